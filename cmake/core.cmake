@@ -1,0 +1,16 @@
+# The ROS-free parts: the engine (Eigen only), the YAML scene loader and the headless simulator.
+file(GLOB IMPULSE2D_CORE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/core/*.cpp)
+add_library(impulse2d_core ${IMPULSE2D_CORE_SOURCES})
+target_include_directories(impulse2d_core PUBLIC ${PROJECT_SOURCE_DIR}/include
+  PRIVATE ${PROJECT_SOURCE_DIR}/src/core)
+target_link_libraries(impulse2d_core PUBLIC Eigen3::Eigen)
+set_target_properties(impulse2d_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+file(GLOB IMPULSE2D_SCENE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/scene/*.cpp)
+add_library(impulse2d_scene ${IMPULSE2D_SCENE_SOURCES})
+target_link_libraries(impulse2d_scene PUBLIC impulse2d_core PRIVATE yaml-cpp)
+set_target_properties(impulse2d_scene PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+file(GLOB IMPULSE2D_SIM_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/sim/*.cpp)
+add_executable(impulse2d_sim ${IMPULSE2D_SIM_SOURCES})
+target_link_libraries(impulse2d_sim PRIVATE impulse2d_scene)

@@ -1,0 +1,21 @@
+# gtest unit tests of the ROS-free parts; no ROS master is involved.
+file(GLOB IMPULSE2D_UNIT_TEST_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/unit/*.cpp)
+set(IMPULSE2D_TEST_DEFINES
+  IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+  IMPULSE2D_SIM_EXECUTABLE="$<TARGET_FILE:impulse2d_sim>")
+
+if(IMPULSE2D_CORE_ONLY)
+  enable_testing()
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+  add_executable(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES})
+  target_link_libraries(impulse2d_unit_tests PRIVATE impulse2d_scene GTest::gtest_main)
+  gtest_discover_tests(impulse2d_unit_tests DISCOVERY_TIMEOUT 60)
+else()
+  catkin_add_gtest(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES} TIMEOUT 600)
+  target_link_libraries(impulse2d_unit_tests impulse2d_scene)
+endif()
+target_include_directories(impulse2d_unit_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/core
+  ${PROJECT_SOURCE_DIR}/src/scene)
+target_compile_definitions(impulse2d_unit_tests PRIVATE ${IMPULSE2D_TEST_DEFINES})
+add_dependencies(impulse2d_unit_tests impulse2d_sim)

@@ -1,0 +1,117 @@
+// Definitions used to create worlds, bodies and joints. Units are SI: metres, kilograms,
+// seconds, radians (counter-clockwise). Every field has a usable default.
+#pragma once
+
+#include <impulse2d/math.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+
+/// Handles to world objects. A handle stays valid until its object is destroyed; a destroyed
+/// object's slot may be reused, and the generation tells an old handle from a new one.
+struct BodyId {
+  int32_t index = -1;
+  uint32_t generation = 0;
+  bool valid() const { return index >= 0; }
+  bool operator==(const BodyId& o) const { return index == o.index && generation == o.generation; }
+  bool operator!=(const BodyId& o) const { return !(*this == o); }
+};
+
+struct JointId {
+  int32_t index = -1;
+  uint32_t generation = 0;
+  bool valid() const { return index >= 0; }
+  bool operator==(const JointId& o) const { return index == o.index && generation == o.generation; }
+  bool operator!=(const JointId& o) const { return !(*this == o); }
+};
+
+/// Which velocity/position solver the world runs; see README "Solvers".
+enum class SolverType {
+  /// Box2D Lite: velocity bias beta/dt * max(0, depth - slop) (Baumgarte); position_iterations
+  /// are not used.
+  Baumgarte,
+  /// Post-stabilisation: the velocity pass has no position bias (no momentum is added), then
+  /// `position_iterations` non-linear Gauss-Seidel passes push overlapping bodies apart.
+  NonlinearGaussSeidel,
+};
+
+struct WorldDef {
+  Vec2 gravity = Vec2(0.0, -9.81);  ///< m/s^2
+  double timeStep = 0.01;           ///< s, the fixed step of World::step()
+  int velocityIterations = 8;
+  int positionIterations = 3;
+  SolverType solver = SolverType::Baumgarte;
+  double baumgarte = 0.2;             ///< fraction of the penetration removed per step
+  double linearSlop = 0.005;          ///< m, penetration left alone so contacts persist
+  double speculativeDistance = 0.02;  ///< m, contacts are kept this far before touching
+  double restitutionThreshold = 1.0;  ///< m/s, slower impacts do not bounce
+  bool warmStarting = true;
+  bool enableSleep = true;              ///< still islands stop costing anything
+  double timeToSleep = 0.5;             ///< s an island must be still before it sleeps
+  double sleepLinearTolerance = 0.01;   ///< m/s, slower counts as still
+  double sleepAngularTolerance = 0.035; ///< rad/s (2 degrees/s)
+};
+
+enum class ShapeKind { Box, Circle, Polygon };
+
+struct ShapeDef {
+  ShapeKind kind = ShapeKind::Box;
+  Vec2 size = Vec2(1.0, 1.0);   ///< box: full width and height (m)
+  double radius = 0.5;          ///< circle (m)
+  std::vector<Vec2> vertices;   ///< polygon: convex, any winding, body frame before `offset`
+  Vec2 offset = Vec2::Zero();   ///< m, shape origin in the body frame
+  double angle = 0.0;           ///< rad, shape rotation in the body frame
+  double density = 1.0;         ///< kg/m^2
+  double friction = 0.6;
+  double restitution = 0.0;
+};
+
+enum class BodyType { Static, Kinematic, Dynamic };
+
+struct BodyDef {
+  std::string name;  ///< unique in the world; may be empty for anonymous bodies
+  BodyType type = BodyType::Dynamic;
+  Vec2 position = Vec2::Zero();  ///< m, the body origin in the world
+  double angle = 0.0;            ///< rad
+  Vec2 linearVelocity = Vec2::Zero();  ///< m/s of the centre of mass (the origin for symmetric bodies)
+  double angularVelocity = 0.0;        ///< rad/s
+  double linearDamping = 0.0;          ///< 1/s
+  double angularDamping = 0.0;         ///< 1/s
+  bool bullet = false;  ///< continuous collision against every body, not only static ones
+  double mass = 0.0;    ///< kg; > 0 overrides the shapes' densities (inertia scales with it)
+  std::vector<ShapeDef> shapes;
+};
+
+enum class JointType { Revolute, Prismatic, Weld, Distance };
+
+struct JointDef {
+  std::string name;
+  JointType type = JointType::Revolute;
+  BodyId bodyA;
+  BodyId bodyB;
+  Vec2 anchor = Vec2::Zero();   ///< m, world point at creation
+  Vec2 axis = Vec2(1.0, 0.0);   ///< prismatic: world direction at creation
+  bool enableLimit = false;
+  double lower = 0.0;           ///< rad (revolute) or m (prismatic)
+  double upper = 0.0;
+  bool enableMotor = false;
+  double motorSpeed = 0.0;      ///< rad/s or m/s
+  double maxMotorTorque = 0.0;  ///< N m (revolute) or N (prismatic)
+  double length = 0.0;          ///< distance joint rest length (m); <= 0: current distance
+  /// Distance joint: the anchor on body B is `anchorB` (m, world point at creation) when
+  /// `useAnchorB` is set, otherwise body B's origin. `anchor` is then the anchor on body A.
+  Vec2 anchorB = Vec2::Zero();
+  bool useAnchorB = false;
+  double frequency = 0.0;     ///< Hz, weld/distance spring; 0 = rigid
+  double dampingRatio = 0.0;  ///< weld/distance spring: 0 = undamped, 1 = critically damped
+  /// m, distance joint with frequency > 0: hard limits on the spring's length.
+  double minLength = 0.0;
+  double maxLength = std::numeric_limits<double>::infinity();
+  bool collideConnected = false;
+};
+
+}  // namespace impulse2d

@@ -1,0 +1,101 @@
+// The public face of the engine: a world of bodies, shapes and joints stepped at a fixed rate.
+#pragma once
+
+#include <impulse2d/body.hpp>
+#include <impulse2d/defs.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+
+/// One contact point as users see it (ROS ~contacts, the CLI's --contacts).
+struct ContactInfo {
+  BodyId bodyA, bodyB;
+  Vec2 point = Vec2::Zero();   ///< world, as found before the step moved the bodies
+  Vec2 normal = Vec2::Zero();  ///< unit, from body A to body B
+  double separation = 0.0;     ///< m, negative = penetration
+  double normalImpulse = 0.0;  ///< N s applied by the last step
+  double tangentImpulse = 0.0; ///< N s, along perp(normal)
+};
+
+/// What a joint is now, for joint_states and drawing.
+struct JointState {
+  Vec2 anchorA = Vec2::Zero();  ///< world position of the anchor on body A
+  Vec2 anchorB = Vec2::Zero();  ///< and on body B; they coincide when the joint holds
+  double position = 0.0;        ///< revolute: angle B - A relative to creation (rad);
+                                ///< prismatic: translation along the axis (m); distance: length
+  double velocity = 0.0;        ///< rad/s or m/s
+};
+
+struct WorldImpl;
+
+class World {
+ public:
+  explicit World(const WorldDef& def = WorldDef());
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// Settings may be changed between steps (time step, iterations, solver, gravity).
+  WorldDef& settings();
+  const WorldDef& settings() const;
+  /// Empty when the settings are usable, otherwise a reason naming the field.
+  static std::string validate(const WorldDef& def);
+
+  // --- creation and destruction; on bad input nothing changes and `error` says why ---
+  /// Checks a body definition without creating it (shape geometry, finite numbers, mass...).
+  static std::string validate(const BodyDef& def);
+  /// Also checks that both bodies exist, differ, and the geometry makes sense.
+  std::string validate(const JointDef& def) const;
+  BodyId createBody(const BodyDef& def, std::string* error = nullptr);
+  /// Destroys the body, its contacts and every joint attached to it.
+  bool destroyBody(BodyId id);
+  JointId createJoint(const JointDef& def, std::string* error = nullptr);
+  bool destroyJoint(JointId id);
+  /// Removes everything; settings are kept.
+  void clear();
+
+  // --- lookup ---
+  bool isValid(BodyId id) const;
+  bool isValid(JointId id) const;
+  BodyId findBody(const std::string& name) const;    ///< invalid id when absent
+  JointId findJoint(const std::string& name) const;  ///< invalid id when absent
+  const Body& body(BodyId id) const;                 ///< precondition: isValid(id)
+  const JointDef& jointDef(JointId id) const;        ///< as created (anchor in world at creation)
+  JointState jointState(JointId id) const;
+  std::vector<BodyId> bodies() const;  ///< in slot order (deterministic)
+  std::vector<JointId> joints() const;
+  size_t bodyCount() const;
+  size_t jointCount() const;
+
+  // --- changing state (each wakes the body) ---
+  bool setTransform(BodyId id, const Vec2& position, double angle);
+  bool setVelocity(BodyId id, const Vec2& linear, double angular);
+  /// A force (N) at a world point, held until the end of the next step.
+  bool applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint);
+  bool applyTorque(BodyId id, double torque);
+  /// Motor of a revolute or prismatic joint.
+  bool setJointMotor(JointId id, bool enable, double speed, double maxForceOrTorque);
+
+  // --- simulation ---
+  /// Advances one fixed step of settings().timeStep.
+  void step();
+  double time() const;
+  uint64_t stepCount() const;
+
+  /// Touching contact points of the last step (speculative points that never touched are left
+  /// out), ordered deterministically.
+  std::vector<ContactInfo> contacts() const;
+  size_t contactCount() const;
+  /// FNV-1a over the exact bits of every body's position, angle and velocities in slot order:
+  /// equal hashes mean bit-identical states.
+  uint64_t hash() const;
+
+ private:
+  std::unique_ptr<WorldImpl> impl_;
+};
+
+}  // namespace impulse2d

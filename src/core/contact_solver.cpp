@@ -1,0 +1,238 @@
+#include "contact_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+namespace {
+
+// Two-point manifolds are solved as a block only while their 2x2 matrix is this well conditioned;
+// nearly coincident points would make it singular, and then the points are solved one by one.
+constexpr double kMaxBlockCondition = 1000.0;
+
+// The largest position correction one NGS pass applies, so deep overlaps (spawned inside each
+// other) separate over several steps instead of exploding apart.
+constexpr double kMaxLinearCorrection = 0.2;
+
+double effectiveMass(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB,
+                     const Vec2& dir) {
+  const double rnA = cross(rA, dir), rnB = cross(rB, dir);
+  const double k = a.invMass + b.invMass + a.invInertia * rnA * rnA + b.invInertia * rnB * rnB;
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
+Vec2 relativeVelocity(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB) {
+  return b.linearVelocity + cross(b.angularVelocity, rB) - a.linearVelocity -
+         cross(a.angularVelocity, rA);
+}
+
+void applyImpulse(Body& a, Body& b, const Vec2& rA, const Vec2& rB, const Vec2& impulse) {
+  a.linearVelocity -= a.invMass * impulse;
+  a.angularVelocity -= a.invInertia * cross(rA, impulse);
+  b.linearVelocity += b.invMass * impulse;
+  b.angularVelocity += b.invInertia * cross(rB, impulse);
+}
+
+}  // namespace
+
+void syncTransform(Body& body) {
+  body.xf.q = Rot(body.angle);
+  body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+}
+
+void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& bodies,
+                            const WorldDef& def, double dt) {
+  constraints_.clear();
+  const bool baumgarte = def.solver == SolverType::Baumgarte;
+  for (Contact& contact : contacts) {
+    const Manifold& m = contact.manifold;
+    if (m.pointCount == 0) continue;
+    const Body& bodyA = bodies[contact.bodyA];
+    const Body& bodyB = bodies[contact.bodyB];
+    const bool activeA = bodyA.type == BodyType::Dynamic && bodyA.awake;
+    const bool activeB = bodyB.type == BodyType::Dynamic && bodyB.awake;
+    if (!activeA && !activeB) continue;  // asleep, or resting on something that cannot move
+    ContactConstraint c;
+    c.contact = &contact;
+    c.a = &bodies[contact.bodyA];
+    c.b = &bodies[contact.bodyB];
+    c.normal = m.normal;
+    c.localNormal = c.a->xf.q.applyInverse(m.normal);
+    c.friction = contact.friction;
+    c.restitution = contact.restitution;
+    c.pointCount = m.pointCount;
+    const Vec2 tangent = perp(m.normal);
+    for (int i = 0; i < m.pointCount; ++i) {
+      const ManifoldPoint& mp = m.points[i];
+      ContactConstraintPoint& p = c.points[i];
+      p.rA = mp.point - c.a->center;
+      p.rB = mp.point - c.b->center;
+      const Vec2 halfGap = 0.5 * mp.separation * m.normal;
+      p.localA = c.a->xf.q.applyInverse(mp.point - halfGap - c.a->center);
+      p.localB = c.b->xf.q.applyInverse(mp.point + halfGap - c.b->center);
+      p.normalImpulse = contact.normalImpulse[i];
+      p.tangentImpulse = contact.tangentImpulse[i];
+      p.normalMass = effectiveMass(*c.a, *c.b, p.rA, p.rB, m.normal);
+      p.tangentMass = effectiveMass(*c.a, *c.b, p.rA, p.rB, tangent);
+      p.separation = mp.separation;
+      p.approachVelocity = relativeVelocity(*c.a, *c.b, p.rA, p.rB).dot(m.normal);
+      if (mp.separation > 0.0) {
+        // Speculative: not touching yet, so the bodies may close the gap within this step.
+        p.targetVelocity = -mp.separation / dt;
+      } else if (baumgarte) {
+        p.targetVelocity = def.baumgarte / dt * std::max(0.0, -mp.separation - def.linearSlop);
+      } else {
+        p.targetVelocity = 0.0;  // the position pass removes the overlap without adding momentum
+      }
+    }
+    if (c.pointCount == 2) {
+      const Body& a = *c.a;
+      const Body& b = *c.b;
+      const double rn1A = cross(c.points[0].rA, c.normal), rn1B = cross(c.points[0].rB, c.normal);
+      const double rn2A = cross(c.points[1].rA, c.normal), rn2B = cross(c.points[1].rB, c.normal);
+      const double m = a.invMass + b.invMass;
+      c.k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
+      c.k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
+      c.k12 = m + a.invInertia * rn1A * rn2A + b.invInertia * rn1B * rn2B;
+      c.blockSolve = c.k11 * c.k11 < kMaxBlockCondition * (c.k11 * c.k22 - c.k12 * c.k12);
+    }
+    constraints_.push_back(c);
+  }
+}
+
+void ContactSolver::warmStart() {
+  for (ContactConstraint& c : constraints_) {
+    const Vec2 tangent = perp(c.normal);
+    for (int i = 0; i < c.pointCount; ++i) {
+      const ContactConstraintPoint& p = c.points[i];
+      applyImpulse(*c.a, *c.b, p.rA, p.rB, p.normalImpulse * c.normal + p.tangentImpulse * tangent);
+    }
+  }
+}
+
+void ContactSolver::solveVelocities() {
+  for (ContactConstraint& c : constraints_) {
+    Body& a = *c.a;
+    Body& b = *c.b;
+    const Vec2 tangent = perp(c.normal);
+    // Friction first: non-penetration matters more, so the normal impulse gets the last word.
+    for (int i = 0; i < c.pointCount; ++i) {
+      ContactConstraintPoint& p = c.points[i];
+      const double vt = relativeVelocity(a, b, p.rA, p.rB).dot(tangent);
+      const double maxFriction = c.friction * p.normalImpulse;
+      const double total = std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
+      const double delta = total - p.tangentImpulse;
+      p.tangentImpulse = total;
+      applyImpulse(a, b, p.rA, p.rB, delta * tangent);
+    }
+    if (c.blockSolve) {
+      solveNormalBlock(c);
+      continue;
+    }
+    for (int i = 0; i < c.pointCount; ++i) {
+      ContactConstraintPoint& p = c.points[i];
+      const double vn = relativeVelocity(a, b, p.rA, p.rB).dot(c.normal);
+      // Clamp the accumulated impulse, not the increment: an iteration may take back what an
+      // earlier one pushed too hard, as long as the total still only pushes.
+      const double total = std::max(p.normalImpulse - p.normalMass * (vn - p.targetVelocity), 0.0);
+      const double delta = total - p.normalImpulse;
+      p.normalImpulse = total;
+      applyImpulse(a, b, p.rA, p.rB, delta * c.normal);
+    }
+  }
+}
+
+// Both normal impulses of a two-point manifold at once: the 2x2 linear complementarity problem
+//   vn = K x + b',  x >= 0,  vn >= 0,  x_i vn_i = 0
+// (x the accumulated impulses, vn the normal velocities above their targets) has few enough
+// cases to try them all: both points pushing, only the first, only the second, neither. Solving
+// the pair exactly removes the left-right bias of one-by-one Gauss-Seidel that makes stacks lean.
+void ContactSolver::solveNormalBlock(ContactConstraint& c) {
+  Body& a = *c.a;
+  Body& b = *c.b;
+  ContactConstraintPoint& p1 = c.points[0];
+  ContactConstraintPoint& p2 = c.points[1];
+  const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
+  // b' = vn - target - K x_old, so that vn_new = K x_new + b'.
+  const double b1 = relativeVelocity(a, b, p1.rA, p1.rB).dot(c.normal) - p1.targetVelocity -
+                    (c.k11 * x1Old + c.k12 * x2Old);
+  const double b2 = relativeVelocity(a, b, p2.rA, p2.rB).dot(c.normal) - p2.targetVelocity -
+                    (c.k12 * x1Old + c.k22 * x2Old);
+  double x1 = 0.0, x2 = 0.0;
+  const double det = c.k11 * c.k22 - c.k12 * c.k12;  // > 0, checked in prepare
+  x1 = -(c.k22 * b1 - c.k12 * b2) / det;
+  x2 = -(c.k11 * b2 - c.k12 * b1) / det;
+  if (!(x1 >= 0.0 && x2 >= 0.0)) {
+    x1 = -b1 / c.k11;  // only the first point pushes
+    x2 = 0.0;
+    if (!(x1 >= 0.0 && c.k12 * x1 + b2 >= 0.0)) {
+      x1 = 0.0;  // only the second
+      x2 = -b2 / c.k22;
+      if (!(x2 >= 0.0 && c.k12 * x2 + b1 >= 0.0)) {
+        x1 = x2 = 0.0;  // neither; if even that violates vn >= 0 keep the old impulses
+        if (!(b1 >= 0.0 && b2 >= 0.0)) return;
+      }
+    }
+  }
+  applyImpulse(a, b, p1.rA, p1.rB, (x1 - x1Old) * c.normal);
+  applyImpulse(a, b, p2.rA, p2.rB, (x2 - x2Old) * c.normal);
+  p1.normalImpulse = x1;
+  p2.normalImpulse = x2;
+}
+
+void ContactSolver::applyRestitution(double threshold) {
+  for (ContactConstraint& c : constraints_) {
+    if (c.restitution == 0.0) continue;
+    for (int i = 0; i < c.pointCount; ++i) {
+      ContactConstraintPoint& p = c.points[i];
+      if (p.approachVelocity > -threshold || p.normalImpulse == 0.0) continue;
+      const double vn = relativeVelocity(*c.a, *c.b, p.rA, p.rB).dot(c.normal);
+      const double target = -c.restitution * p.approachVelocity;
+      const double total = std::max(p.normalImpulse - p.normalMass * (vn - target), 0.0);
+      const double delta = total - p.normalImpulse;
+      p.normalImpulse = total;
+      applyImpulse(*c.a, *c.b, p.rA, p.rB, delta * c.normal);
+    }
+  }
+}
+
+void ContactSolver::storeImpulses() {
+  for (ContactConstraint& c : constraints_) {
+    for (int i = 0; i < c.pointCount; ++i) {
+      c.contact->normalImpulse[i] = c.points[i].normalImpulse;
+      c.contact->tangentImpulse[i] = c.points[i].tangentImpulse;
+    }
+  }
+}
+
+bool ContactSolver::solvePositions(const WorldDef& def) {
+  double deepest = 0.0;
+  for (ContactConstraint& c : constraints_) {
+    Body& a = *c.a;
+    Body& b = *c.b;
+    for (int i = 0; i < c.pointCount; ++i) {
+      const ContactConstraintPoint& p = c.points[i];
+      // Re-measure the separation at the current (partly corrected) poses.
+      const Vec2 normal = a.xf.q.apply(c.localNormal);
+      const Vec2 pointA = a.center + a.xf.q.apply(p.localA);
+      const Vec2 pointB = b.center + b.xf.q.apply(p.localB);
+      const double separation = (pointB - pointA).dot(normal);
+      const Vec2 mid = 0.5 * (pointA + pointB);
+      const Vec2 rA = mid - a.center, rB = mid - b.center;
+      deepest = std::min(deepest, separation);
+      const double correction = std::clamp(def.baumgarte * (separation + def.linearSlop),
+                                           -kMaxLinearCorrection, 0.0);
+      const double mass = effectiveMass(a, b, rA, rB, normal);
+      const Vec2 impulse = -correction * mass * normal;
+      a.center -= a.invMass * impulse;
+      a.angle -= a.invInertia * cross(rA, impulse);
+      b.center += b.invMass * impulse;
+      b.angle += b.invInertia * cross(rB, impulse);
+      if (a.invMass > 0.0 || a.invInertia > 0.0) syncTransform(a);
+      if (b.invMass > 0.0 || b.invInertia > 0.0) syncTransform(b);
+    }
+  }
+  return deepest >= -3.0 * def.linearSlop;
+}
+
+}  // namespace impulse2d

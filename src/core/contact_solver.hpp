@@ -1,0 +1,65 @@
+// The contact part of the sequential-impulse solver: effective masses and biases computed once
+// per step (pre-step), then Gauss-Seidel iterations over the points with accumulated impulses
+// clamped (normal >= 0, friction inside the cone |t| <= mu * n).
+#pragma once
+
+#include "contact.hpp"
+
+#include <impulse2d/body.hpp>
+#include <impulse2d/defs.hpp>
+
+#include <vector>
+
+namespace impulse2d {
+
+struct ContactConstraintPoint {
+  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();  // from each centre of mass to the point
+  Vec2 localA = Vec2::Zero(), localB = Vec2::Zero();  // surface points, body frames, for NGS
+  double normalImpulse = 0.0, tangentImpulse = 0.0;
+  double normalMass = 0.0, tangentMass = 0.0;
+  double targetVelocity = 0.0;    // the normal velocity the point must at least reach
+  double approachVelocity = 0.0;  // normal velocity before solving, for restitution
+  double separation = 0.0;
+};
+
+struct ContactConstraint {
+  Contact* contact = nullptr;
+  Body* a = nullptr;
+  Body* b = nullptr;
+  Vec2 normal = Vec2::Zero();
+  Vec2 localNormal = Vec2::Zero();  // in A's frame, for NGS
+  double friction = 0.0, restitution = 0.0;
+  int pointCount = 0;
+  ContactConstraintPoint points[2];
+  // Two-point manifolds whose points are not (nearly) redundant solve both normal impulses at
+  // once; k is their 2x2 effective-mass matrix, used when `blockSolve` is set.
+  bool blockSolve = false;
+  double k11 = 0.0, k12 = 0.0, k22 = 0.0;
+};
+
+class ContactSolver {
+ public:
+  /// Builds the constraints of the touching (or about to touch) contacts.
+  void prepare(std::vector<Contact>& contacts, std::vector<Body>& bodies, const WorldDef& def,
+               double dt);
+  void warmStart();
+  void solveVelocities();
+  /// Bounces points that approached faster than the threshold, once, after the iterations.
+  void applyRestitution(double threshold);
+  /// Copies accumulated impulses back into the arbiters for the next step's warm start.
+  void storeImpulses();
+  /// One non-linear Gauss-Seidel pass on positions; returns true when every overlap is within
+  /// a small multiple of the slop (then further passes are skipped).
+  bool solvePositions(const WorldDef& def);
+  size_t size() const { return constraints_.size(); }
+
+ private:
+  void solveNormalBlock(ContactConstraint& c);
+
+  std::vector<ContactConstraint> constraints_;
+};
+
+/// Keeps xf consistent with the centre of mass and angle after the solver moved them.
+void syncTransform(Body& body);
+
+}  // namespace impulse2d

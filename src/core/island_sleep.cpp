@@ -1,0 +1,99 @@
+// Sleeping: bodies connected by touching contacts or joints form an island; when every body of an
+// island has been still for timeToSleep, the whole island sleeps. Sleeping bodies are neither
+// integrated, nor refitted in the broad phase, nor solved, so a settled pile costs nothing.
+// Static bodies join no island: a box on the ground sleeps on its own, not with everything else
+// that happens to rest on the same ground.
+#include <limits>
+
+#include "world_impl.hpp"
+
+namespace impulse2d {
+namespace {
+
+bool isTouching(const Contact& contact) {
+  for (int i = 0; i < contact.manifold.pointCount; ++i) {
+    if (contact.manifold.points[i].separation <= 0.0 || contact.normalImpulse[i] > 0.0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void WorldImpl::updateSleep(double dt) {
+  const int slotCount = static_cast<int>(bodies.items.size());
+  const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;
+  const double angTol2 = def.sleepAngularTolerance * def.sleepAngularTolerance;
+
+  // Contacts per body as a compressed adjacency list (counts, then offsets), rebuilt each step
+  // into reused buffers.
+  adjacencyStart.assign(slotCount + 1, 0);
+  for (const Contact& c : contacts) {
+    if (!isTouching(c)) continue;
+    ++adjacencyStart[c.bodyA + 1];
+    ++adjacencyStart[c.bodyB + 1];
+  }
+  for (int i = 0; i < slotCount; ++i) adjacencyStart[i + 1] += adjacencyStart[i];
+  adjacency.resize(adjacencyStart[slotCount]);
+  adjacencyFill.assign(adjacencyStart.begin(), adjacencyStart.end() - 1);
+  for (const Contact& c : contacts) {
+    if (!isTouching(c)) continue;
+    adjacency[adjacencyFill[c.bodyA]++] = c.bodyB;
+    adjacency[adjacencyFill[c.bodyB]++] = c.bodyA;
+  }
+
+  for (int i = 0; i < slotCount; ++i) {
+    Body& body = bodies.items[i];
+    body.islandFlag = 0;
+    if (!bodies.alive[i] || body.type != BodyType::Dynamic || !body.awake) continue;
+    const bool still = body.linearVelocity.squaredNorm() <= linTol2 &&
+                       body.angularVelocity * body.angularVelocity <= angTol2;
+    body.sleepTime = still ? body.sleepTime + dt : 0.0;
+  }
+
+  // Flood fill from each awake dynamic body. A sleeping body reached from an awake one is woken:
+  // something touches it.
+  for (int seed = 0; seed < slotCount; ++seed) {
+    Body& start = bodies.items[seed];
+    if (!bodies.alive[seed] || start.type != BodyType::Dynamic || !start.awake ||
+        start.islandFlag) {
+      continue;
+    }
+    island.clear();
+    islandStack.clear();
+    islandStack.push_back(seed);
+    start.islandFlag = 1;
+    double minSleepTime = std::numeric_limits<double>::infinity();
+    while (!islandStack.empty()) {
+      const int index = islandStack.back();
+      islandStack.pop_back();
+      Body& body = bodies.items[index];
+      island.push_back(index);
+      if (!body.awake) wakeBody(body);
+      minSleepTime = std::min(minSleepTime, body.sleepTime);
+      auto visit = [&](int other) {
+        Body& next = bodies.items[other];
+        if (next.type == BodyType::Kinematic && (next.linearVelocity.squaredNorm() > 0.0 ||
+                                                 next.angularVelocity != 0.0)) {
+          minSleepTime = 0.0;  // a moving kinematic body keeps what it touches awake
+        }
+        if (next.type != BodyType::Dynamic || next.islandFlag) return;
+        next.islandFlag = 1;
+        islandStack.push_back(other);
+      };
+      for (int k = adjacencyStart[index]; k < adjacencyStart[index + 1]; ++k) visit(adjacency[k]);
+      for (const int j : jointsOfBody[index]) {
+        const Joint& joint = joints.items[j];
+        visit(joint.bodyA == index ? joint.bodyB : joint.bodyA);
+      }
+    }
+    if (!def.enableSleep || minSleepTime < def.timeToSleep) continue;
+    for (const int index : island) {
+      Body& body = bodies.items[index];
+      body.awake = false;
+      body.linearVelocity.setZero();
+      body.angularVelocity = 0.0;
+    }
+  }
+}
+
+}  // namespace impulse2d

@@ -1,0 +1,154 @@
+// Joint set-up and the dispatch from the world's solver loop to each joint type.
+#include "joint.hpp"
+
+#include "contact_solver.hpp"  // syncTransform
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+
+Eigen::Matrix2d pointMassMatrix(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB) {
+  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
+  Eigen::Matrix2d k;
+  k(0, 0) = mA + mB + iA * rA.y() * rA.y() + iB * rB.y() * rB.y();
+  k(0, 1) = -iA * rA.x() * rA.y() - iB * rB.x() * rB.y();
+  k(1, 0) = k(0, 1);
+  k(1, 1) = mA + mB + iA * rA.x() * rA.x() + iB * rB.x() * rB.x();
+  return k;
+}
+
+Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
+  const double det = k.determinant();
+  return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
+}
+
+void applyJointImpulse(Body& a, Body& b, const Vec2& p, double angularA, double angularB) {
+  a.linearVelocity -= a.invMass * p;
+  a.angularVelocity -= a.invInertia * angularA;
+  b.linearVelocity += b.invMass * p;
+  b.angularVelocity += b.invInertia * angularB;
+}
+
+void applyJointCorrection(Body& a, Body& b, const Vec2& p, double angularA, double angularB) {
+  a.center -= a.invMass * p;
+  a.angle -= a.invInertia * angularA;
+  b.center += b.invMass * p;
+  b.angle += b.invInertia * angularB;
+  syncTransform(a);
+  syncTransform(b);
+}
+
+double limitBias(double c, const WorldDef& def, double dt) {
+  if (c > 0.0) return c / dt;
+  return def.solver == SolverType::Baumgarte ? def.baumgarte / dt * c : 0.0;
+}
+
+Softness softness(double frequency, double dampingRatio, double effectiveMass, double dt) {
+  Softness soft;
+  if (!(frequency > 0.0) || !(effectiveMass > 0.0)) return soft;
+  const double omega = 2.0 * kPi * frequency;
+  const double k = effectiveMass * omega * omega;
+  const double c = 2.0 * effectiveMass * dampingRatio * omega;
+  soft.gamma = 1.0 / (dt * (c + dt * k));
+  soft.biasRate = dt * k * soft.gamma;
+  return soft;
+}
+
+void initJoint(Joint& joint, const Body& a, const Body& b) {
+  const JointDef& def = joint.def;
+  joint.localAnchorA = a.xf.applyInverse(def.anchor);
+  joint.localAnchorB = b.xf.applyInverse(def.anchor);
+  joint.referenceAngle = b.angle - a.angle;
+  if (def.type == JointType::Prismatic) {
+    // Kept in A's frame so the rail turns with A.
+    joint.localAxisA = a.xf.q.applyInverse(def.axis.normalized());
+  } else if (def.type == JointType::Distance) {
+    joint.localAnchorB = def.useAnchorB ? b.xf.applyInverse(def.anchorB) : Vec2::Zero();
+    const double current = (b.xf.apply(joint.localAnchorB) - def.anchor).norm();
+    joint.restLength =
+        def.length > 0.0 ? def.length : std::clamp(current, def.minLength, def.maxLength);
+  }
+}
+
+void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+  if (!def.warmStarting) {  // the world resets only the impulses every type shares
+    joint.angularImpulse = joint.lengthImpulse = 0.0;
+  }
+  switch (joint.def.type) {
+    case JointType::Revolute:
+      prepareRevolute(joint, a, b, def, dt);
+      break;
+    case JointType::Prismatic:
+      preparePrismatic(joint, a, b, def, dt);
+      break;
+    case JointType::Weld:
+      prepareWeld(joint, a, b, def, dt);
+      break;
+    case JointType::Distance:
+      prepareDistance(joint, a, b, def, dt);
+      break;
+  }
+}
+
+void warmStartJoint(Joint& joint, Body& a, Body& b) {
+  switch (joint.def.type) {
+    case JointType::Revolute:
+      warmStartRevolute(joint, a, b);
+      break;
+    case JointType::Prismatic:
+      warmStartPrismatic(joint, a, b);
+      break;
+    case JointType::Weld:
+      warmStartWeld(joint, a, b);
+      break;
+    case JointType::Distance:
+      warmStartDistance(joint, a, b);
+      break;
+  }
+}
+
+void solveJointVelocity(Joint& joint, Body& a, Body& b, double dt) {
+  switch (joint.def.type) {
+    case JointType::Revolute:
+      solveRevoluteVelocity(joint, a, b, dt);
+      break;
+    case JointType::Prismatic:
+      solvePrismaticVelocity(joint, a, b, dt);
+      break;
+    case JointType::Weld:
+      solveWeldVelocity(joint, a, b, dt);
+      break;
+    case JointType::Distance:
+      solveDistanceVelocity(joint, a, b, dt);
+      break;
+  }
+}
+
+bool solveJointPosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+  switch (joint.def.type) {
+    case JointType::Revolute:
+      return solveRevolutePosition(joint, a, b, def);
+    case JointType::Prismatic:
+      return solvePrismaticPosition(joint, a, b, def);
+    case JointType::Weld:
+      return solveWeldPosition(joint, a, b, def);
+    case JointType::Distance:
+      return solveDistancePosition(joint, a, b, def);
+  }
+  return true;
+}
+
+JointState measureJoint(const Joint& joint, const Body& a, const Body& b) {
+  if (joint.def.type == JointType::Prismatic) return measurePrismatic(joint, a, b);
+  if (joint.def.type == JointType::Distance) return measureDistance(joint, a, b);
+  // Revolute and weld: the relative angle.
+  JointState state;
+  state.anchorA = a.xf.apply(joint.localAnchorA);
+  state.anchorB = b.xf.apply(joint.localAnchorB);
+  state.position = b.angle - a.angle - joint.referenceAngle;
+  state.velocity = b.angularVelocity - a.angularVelocity;
+  return state;
+}
+
+}  // namespace impulse2d

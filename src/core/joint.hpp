@@ -1,0 +1,119 @@
+// Joints as the solver sees them. Each type keeps its anchors in the bodies' frames and its
+// accumulated impulses between steps (warm starting), like contacts do. joint.cpp dispatches on
+// the type; each type's constraint rows live in joint_<type>.cpp.
+#pragma once
+
+#include <impulse2d/body.hpp>
+#include <impulse2d/defs.hpp>
+#include <impulse2d/world.hpp>
+
+#include <Eigen/Dense>
+
+namespace impulse2d {
+
+constexpr double kAngularSlop = 2.0 * kPi / 180.0;             // rad left alone by NGS
+constexpr double kMaxAngularCorrection = 8.0 * kPi / 180.0;   // rad per NGS pass
+constexpr double kMaxJointLinearCorrection = 0.2;             // m per NGS pass
+
+struct Joint {
+  JointId id;
+  JointDef def;
+  int bodyA = -1, bodyB = -1;  // slot indices
+  Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
+  double referenceAngle = 0.0;  // angle B - angle A at creation
+  Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
+  double restLength = 0.0;           // distance: the length the joint keeps (m)
+
+  // Accumulated impulses, kept across steps. The prismatic keeps its perpendicular and angular
+  // rows in pointImpulse (x, y); the distance its limits in lowerImpulse / upperImpulse.
+  Vec2 pointImpulse = Vec2::Zero();
+  double motorImpulse = 0.0;
+  double lowerImpulse = 0.0, upperImpulse = 0.0;
+  double angularImpulse = 0.0;  // weld angle row
+  double lengthImpulse = 0.0;   // distance length row (rigid or spring)
+
+  // Pre-step scratch.
+  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();  // from each centre of mass to the anchor
+  Eigen::Matrix2d pointMass = Eigen::Matrix2d::Zero();
+  Vec2 pointBias = Vec2::Zero();
+  double axialMass = 0.0;
+  double angle = 0.0;  // current joint angle relative to the reference
+  double lowerBias = 0.0, upperBias = 0.0;  // target rates of the limit constraints
+  // Prismatic and distance: the axial row's direction (unit, world) and its lever arms
+  // cross(r, axis) on each body; the prismatic also its perpendicular row's.
+  Vec2 axis = Vec2::Zero(), normal = Vec2::Zero();
+  double axisArmA = 0.0, axisArmB = 0.0, normalArmA = 0.0, normalArmB = 0.0;
+  double axialPosition = 0.0;  // prismatic translation or distance length now (m)
+  // Equality rows' target rates (Baumgarte or spring), like pointBias.
+  double angularBias = 0.0, lengthBias = 0.0;
+  // Weld: the inverse of the 3x3 block (point + angle) when rigid.
+  Eigen::Matrix3d blockMass = Eigen::Matrix3d::Zero();
+  // Spring rows (weld angle, distance length): softened effective mass and the softness gamma.
+  double springMass = 0.0, springGamma = 0.0;
+};
+
+/// Initialises anchors and reference angle from a validated def.
+void initJoint(Joint& joint, const Body& a, const Body& b);
+
+void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void warmStartJoint(Joint& joint, Body& a, Body& b);
+void solveJointVelocity(Joint& joint, Body& a, Body& b, double dt);
+/// One NGS position pass; returns true when the joint's error is within the slop.
+bool solveJointPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
+
+// --- shared by the joint types ---
+
+/// K = [mA + mB + iA rA.y^2 + iB rB.y^2,   -iA rA.x rA.y - iB rB.x rB.y ]
+///     [-iA rA.x rA.y - iB rB.x rB.y,      mA + mB + iA rA.x^2 + iB rB.x^2]
+/// maps an impulse at a shared point to the change of the relative velocity there.
+Eigen::Matrix2d pointMassMatrix(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB);
+/// The inverse, or zero when K is singular (two bodies that cannot move).
+Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k);
+
+/// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
+///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
+void applyJointImpulse(Body& a, Body& b, const Vec2& p, double angularA, double angularB);
+/// The same as a position correction (NGS), then syncs both transforms.
+void applyJointCorrection(Body& a, Body& b, const Vec2& p, double angularA, double angularB);
+/// Target rate of a one-sided limit row whose position error is c (>= 0 means within): a limit
+/// not yet reached may be approached within the step (speculative); one already passed is pushed
+/// back by the Baumgarte bias or, with NGS, by the position pass.
+double limitBias(double c, const WorldDef& def, double dt);
+
+/// A soft (spring) row. With effective mass m, stiffness k = m w^2 and damping c = 2 m zeta w
+/// (w = 2 pi frequency), implicit Euler over one step asks the impulse L to satisfy
+///   L = -dt (k (C + dt Cdot') + c Cdot'),  Cdot' = Cdot + L / m,
+/// which rearranges to Cdot + biasRate C + gamma L = -L / m with
+///   gamma = 1 / (dt (c + dt k)),  biasRate = dt k gamma.
+/// gamma = 0 and biasRate = 0 when there is no spring (frequency 0 or m 0).
+struct Softness {
+  double gamma = 0.0;
+  double biasRate = 0.0;  // 1/s
+};
+Softness softness(double frequency, double dampingRatio, double effectiveMass, double dt);
+
+// --- per type ---
+void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void warmStartRevolute(Joint& joint, Body& a, Body& b);
+void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt);
+bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+
+void preparePrismatic(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void warmStartPrismatic(Joint& joint, Body& a, Body& b);
+void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt);
+bool solvePrismaticPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+JointState measurePrismatic(const Joint& joint, const Body& a, const Body& b);
+
+void prepareWeld(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void warmStartWeld(Joint& joint, Body& a, Body& b);
+void solveWeldVelocity(Joint& joint, Body& a, Body& b, double dt);
+bool solveWeldPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+
+void prepareDistance(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void warmStartDistance(Joint& joint, Body& a, Body& b);
+void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double dt);
+bool solveDistancePosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+JointState measureDistance(const Joint& joint, const Body& a, const Body& b);
+
+}  // namespace impulse2d

@@ -1,0 +1,191 @@
+// The prismatic joint: body B slides along a rail fixed in body A and keeps its angle to A.
+//
+//                 n = perp(u)
+//                 ^
+//        A        |            B
+//   =====pA-------+---------->pB=====> u  (the rail, fixed in A's frame)
+//        \___________ d _____/
+//
+//   C_perp  = n . d                         = 0   \  solved together as a 2x2 block, so
+//   C_angle = angle_B - angle_A - reference = 0   /  neither row undoes the other's work
+//   x       = u . d  in [lower, upper] (speculative limits), motor on dx/dt
+//
+// Jacobians, with pA = cA + rA, pB = cB + rB, d = pB - pA and the rail turning with A
+// (dn/dt = wA x n, and (wA x n) . d = wA cross(n, d) = -wA cross(d, n)):
+//   d/dt (n . d) = -n.vA - wA cross(rA + d, n) + n.vB + wB cross(rB, n)
+// and the same with u for the axial row. A's lever arm is rA + d: A feels the reaction where B
+// actually is on the rail, not at A's anchor. The effective masses follow as J M^-1 J^T:
+//   K = [mA + mB + iA sA^2 + iB sB^2,  iA sA + iB sB]    sA = cross(rA + d, n)
+//       [iA sA + iB sB,                iA + iB      ]    sB = cross(rB, n)
+//   axial: mA + mB + iA aA^2 + iB aB^2                   aA = cross(rA + d, u), aB = cross(rB, u)
+// Impulses: pointImpulse = (perpendicular, angular); the axial one is motor + lower - upper.
+#include "joint.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+namespace {
+
+// Applies impulses on the perpendicular, angular and axial rows (J^T lambda).
+void applyRows(const Joint& j, Body& a, Body& b, double perpendicular, double angular,
+               double axial) {
+  const Vec2 p = perpendicular * j.normal + axial * j.axis;
+  applyJointImpulse(a, b, p, j.normalArmA * perpendicular + angular + j.axisArmA * axial,
+                    j.normalArmB * perpendicular + angular + j.axisArmB * axial);
+}
+
+double axialRate(const Vec2& axis, double armA, double armB, const Body& a, const Body& b) {
+  return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
+         armA * a.angularVelocity;
+}
+
+double axialRate(const Joint& j, const Body& a, const Body& b) {
+  return axialRate(j.axis, j.axisArmA, j.axisArmB, a, b);
+}
+
+// The rail at the bodies' current positions: the part of prepare that the position pass repeats
+// after every correction and that measurePrismatic needs.
+struct Rail {
+  Vec2 rA, rB, d, axis, normal;
+  double axisArmA, axisArmB, normalArmA, normalArmB;
+};
+
+Rail railOf(const Joint& j, const Body& a, const Body& b) {
+  Rail r;
+  r.rA = a.xf.q.apply(j.localAnchorA - a.localCenter);
+  r.rB = b.xf.q.apply(j.localAnchorB - b.localCenter);
+  r.d = (b.center + r.rB) - (a.center + r.rA);
+  r.axis = a.xf.q.apply(j.localAxisA);
+  r.normal = perp(r.axis);
+  const Vec2 armA = r.rA + r.d;
+  r.axisArmA = cross(armA, r.axis);
+  r.axisArmB = cross(r.rB, r.axis);
+  r.normalArmA = cross(armA, r.normal);
+  r.normalArmB = cross(r.rB, r.normal);
+  return r;
+}
+
+void storeRail(Joint& j, const Rail& r, const Body& a, const Body& b) {
+  j.rA = r.rA;
+  j.rB = r.rB;
+  j.axis = r.axis;
+  j.normal = r.normal;
+  j.axisArmA = r.axisArmA;
+  j.axisArmB = r.axisArmB;
+  j.normalArmA = r.normalArmA;
+  j.normalArmB = r.normalArmB;
+  j.axialPosition = r.axis.dot(r.d);
+  j.angle = b.angle - a.angle - j.referenceAngle;
+}
+
+Eigen::Matrix2d blockMatrix(const Joint& j, const Body& a, const Body& b) {
+  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
+  Eigen::Matrix2d k;
+  k(0, 0) = mA + mB + iA * j.normalArmA * j.normalArmA + iB * j.normalArmB * j.normalArmB;
+  k(0, 1) = k(1, 0) = iA * j.normalArmA + iB * j.normalArmB;
+  // Two bodies that cannot turn: the angle row is moot, and a unit entry keeps K invertible
+  // (its off-diagonal is then zero too) so the perpendicular row still works.
+  k(1, 1) = iA + iB > 0.0 ? iA + iB : 1.0;
+  return k;
+}
+
+double axialMassOf(const Joint& j, const Body& a, const Body& b) {
+  const double k = a.invMass + b.invMass + a.invInertia * j.axisArmA * j.axisArmA +
+                   b.invInertia * j.axisArmB * j.axisArmB;
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
+}  // namespace
+
+void preparePrismatic(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+  const Rail rail = railOf(joint, a, b);
+  storeRail(joint, rail, a, b);
+  joint.pointMass = safeInverse(blockMatrix(joint, a, b));
+  joint.axialMass = axialMassOf(joint, a, b);
+  const bool baumgarte = def.solver == SolverType::Baumgarte;
+  const Vec2 error(rail.normal.dot(rail.d), joint.angle);
+  joint.pointBias = baumgarte ? Vec2(-def.baumgarte / dt * error) : Vec2::Zero();
+  joint.lowerBias = limitBias(joint.axialPosition - joint.def.lower, def, dt);
+  joint.upperBias = limitBias(joint.def.upper - joint.axialPosition, def, dt);
+  if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
+  if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
+}
+
+void warmStartPrismatic(Joint& joint, Body& a, Body& b) {
+  applyRows(joint, a, b, joint.pointImpulse.x(), joint.pointImpulse.y(),
+            joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse);
+}
+
+void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt) {
+  const JointDef& def = joint.def;
+  if (def.enableMotor) {
+    const double maxImpulse = def.maxMotorTorque * dt;  // a force (N) for this joint
+    const double total =
+        std::clamp(joint.motorImpulse - joint.axialMass * (axialRate(joint, a, b) - def.motorSpeed),
+                   -maxImpulse, maxImpulse);
+    applyRows(joint, a, b, 0.0, 0.0, total - joint.motorImpulse);
+    joint.motorImpulse = total;
+  }
+  if (def.enableLimit) {
+    // Lower: x - lower >= 0. Upper: upper - x >= 0, whose impulse pushes along -u.
+    const double lower = std::max(
+        joint.lowerImpulse - joint.axialMass * (axialRate(joint, a, b) + joint.lowerBias), 0.0);
+    applyRows(joint, a, b, 0.0, 0.0, lower - joint.lowerImpulse);
+    joint.lowerImpulse = lower;
+
+    const double upper = std::max(
+        joint.upperImpulse - joint.axialMass * (-axialRate(joint, a, b) + joint.upperBias), 0.0);
+    applyRows(joint, a, b, 0.0, 0.0, -(upper - joint.upperImpulse));
+    joint.upperImpulse = upper;
+  }
+  // Last, so the rail itself is the row best satisfied when the iterations stop.
+  const Vec2 cdot(joint.normal.dot(b.linearVelocity - a.linearVelocity) +
+                      joint.normalArmB * b.angularVelocity - joint.normalArmA * a.angularVelocity,
+                  b.angularVelocity - a.angularVelocity);
+  const Vec2 impulse = joint.pointMass * (joint.pointBias - cdot);
+  joint.pointImpulse += impulse;
+  applyRows(joint, a, b, impulse.x(), impulse.y(), 0.0);
+}
+
+bool solvePrismaticPosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+  storeRail(joint, railOf(joint, a, b), a, b);
+  double limitError = 0.0;
+  if (joint.def.enableLimit) {
+    const double x = joint.axialPosition;
+    double c = 0.0;
+    if (x < joint.def.lower) c = x - joint.def.lower;
+    if (x > joint.def.upper) c = x - joint.def.upper;
+    limitError = std::abs(c);
+    if (c != 0.0) {
+      c = std::clamp(c, -kMaxJointLinearCorrection, kMaxJointLinearCorrection);
+      const double impulse = -axialMassOf(joint, a, b) * c;
+      applyJointCorrection(a, b, impulse * joint.axis, joint.axisArmA * impulse,
+                           joint.axisArmB * impulse);
+    }
+  }
+  const Rail rail = railOf(joint, a, b);
+  storeRail(joint, rail, a, b);
+  const double perpendicular = rail.normal.dot(rail.d);
+  const double linearError = std::max(limitError, std::abs(perpendicular));
+  const double angularError = std::abs(joint.angle);
+  const Vec2 c(std::clamp(perpendicular, -kMaxJointLinearCorrection, kMaxJointLinearCorrection),
+               std::clamp(joint.angle, -kMaxAngularCorrection, kMaxAngularCorrection));
+  const Vec2 impulse = -(safeInverse(blockMatrix(joint, a, b)) * c);
+  applyJointCorrection(a, b, impulse.x() * joint.normal,
+                       joint.normalArmA * impulse.x() + impulse.y(),
+                       joint.normalArmB * impulse.x() + impulse.y());
+  return linearError <= def.linearSlop && angularError <= kAngularSlop;
+}
+
+JointState measurePrismatic(const Joint& joint, const Body& a, const Body& b) {
+  const Rail rail = railOf(joint, a, b);
+  JointState state;
+  state.anchorA = a.xf.apply(joint.localAnchorA);
+  state.anchorB = b.xf.apply(joint.localAnchorB);
+  state.position = rail.axis.dot(rail.d);
+  state.velocity = axialRate(rail.axis, rail.axisArmA, rail.axisArmB, a, b);
+  return state;
+}
+
+}  // namespace impulse2d

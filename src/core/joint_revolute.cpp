@@ -1,0 +1,116 @@
+// The revolute joint: a shared point (a 2x2 block, Box2D Lite's K matrix) plus an optional motor
+// and angle limits on the relative rotation.
+#include "contact_solver.hpp"  // syncTransform
+#include "joint.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+namespace {
+
+void applyAngular(Body& a, Body& b, double impulse) {
+  a.angularVelocity -= a.invInertia * impulse;
+  b.angularVelocity += b.invInertia * impulse;
+}
+
+}  // namespace
+
+void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+  joint.rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
+  joint.rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
+  joint.pointMass = safeInverse(pointMassMatrix(a, b, joint.rA, joint.rB));
+  const double inertiaSum = a.invInertia + b.invInertia;
+  joint.axialMass = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
+  joint.angle = b.angle - a.angle - joint.referenceAngle;
+
+  const bool baumgarte = def.solver == SolverType::Baumgarte;
+  const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
+  joint.pointBias = baumgarte ? Vec2(-def.baumgarte / dt * gap) : Vec2::Zero();
+
+  // A limit not yet reached is speculative (may be approached within the step); one already
+  // passed is pushed back by the Baumgarte bias or, with NGS, by the position pass.
+  auto limitBias = [&](double c) {
+    if (c > 0.0) return c / dt;
+    return baumgarte ? def.baumgarte / dt * c : 0.0;
+  };
+  joint.lowerBias = limitBias(joint.angle - joint.def.lower);
+  joint.upperBias = limitBias(joint.def.upper - joint.angle);
+  if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
+  if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
+}
+
+void warmStartRevolute(Joint& joint, Body& a, Body& b) {
+  const Vec2& p = joint.pointImpulse;
+  const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
+  a.linearVelocity -= a.invMass * p;
+  a.angularVelocity -= a.invInertia * (cross(joint.rA, p) + axial);
+  b.linearVelocity += b.invMass * p;
+  b.angularVelocity += b.invInertia * (cross(joint.rB, p) + axial);
+}
+
+void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt) {
+  const JointDef& def = joint.def;
+  if (def.enableMotor) {
+    const double cdot = b.angularVelocity - a.angularVelocity - def.motorSpeed;
+    const double maxImpulse = def.maxMotorTorque * dt;
+    const double total =
+        std::clamp(joint.motorImpulse - joint.axialMass * cdot, -maxImpulse, maxImpulse);
+    applyAngular(a, b, total - joint.motorImpulse);
+    joint.motorImpulse = total;
+  }
+  if (def.enableLimit) {
+    // Lower: angle - lower >= 0. Upper: upper - angle >= 0, so its impulse acts negatively.
+    const double cdotLower = b.angularVelocity - a.angularVelocity;
+    const double lower =
+        std::max(joint.lowerImpulse - joint.axialMass * (cdotLower + joint.lowerBias), 0.0);
+    applyAngular(a, b, lower - joint.lowerImpulse);
+    joint.lowerImpulse = lower;
+
+    const double cdotUpper = a.angularVelocity - b.angularVelocity;
+    const double upper =
+        std::max(joint.upperImpulse - joint.axialMass * (cdotUpper + joint.upperBias), 0.0);
+    applyAngular(a, b, -(upper - joint.upperImpulse));
+    joint.upperImpulse = upper;
+  }
+  const Vec2 cdot = b.linearVelocity + cross(b.angularVelocity, joint.rB) - a.linearVelocity -
+                    cross(a.angularVelocity, joint.rA);
+  const Vec2 impulse = joint.pointMass * (joint.pointBias - cdot);
+  joint.pointImpulse += impulse;
+  a.linearVelocity -= a.invMass * impulse;
+  a.angularVelocity -= a.invInertia * cross(joint.rA, impulse);
+  b.linearVelocity += b.invMass * impulse;
+  b.angularVelocity += b.invInertia * cross(joint.rB, impulse);
+}
+
+bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+  double angularError = 0.0;
+  if (joint.def.enableLimit && joint.axialMass > 0.0) {
+    const double angle = b.angle - a.angle - joint.referenceAngle;
+    double c = 0.0;
+    if (angle < joint.def.lower) c = angle - joint.def.lower;
+    if (angle > joint.def.upper) c = angle - joint.def.upper;
+    angularError = std::abs(c);
+    c = std::clamp(c, -kMaxAngularCorrection, kMaxAngularCorrection);
+    const double impulse = -joint.axialMass * c;
+    a.angle -= a.invInertia * impulse;
+    b.angle += b.invInertia * impulse;
+    syncTransform(a);
+    syncTransform(b);
+  }
+  const Vec2 rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
+  const Vec2 rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
+  Vec2 c = (b.center + rB) - (a.center + rA);
+  const double linearError = c.norm();
+  if (linearError > kMaxJointLinearCorrection) c *= kMaxJointLinearCorrection / linearError;
+  const Vec2 impulse = -(safeInverse(pointMassMatrix(a, b, rA, rB)) * c);
+  a.center -= a.invMass * impulse;
+  a.angle -= a.invInertia * cross(rA, impulse);
+  b.center += b.invMass * impulse;
+  b.angle += b.invInertia * cross(rB, impulse);
+  syncTransform(a);
+  syncTransform(b);
+  return linearError <= def.linearSlop && angularError <= kAngularSlop;
+}
+
+}  // namespace impulse2d

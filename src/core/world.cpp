@@ -1,0 +1,488 @@
+// World's public API: creating and destroying bodies and joints, lookups, state changes and
+// read-outs. The step itself is in world_step.cpp.
+#include "world_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace impulse2d {
+
+World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) { impl_->def = def; }
+World::~World() = default;
+
+WorldDef& World::settings() { return impl_->def; }
+const WorldDef& World::settings() const { return impl_->def; }
+
+// --- broad-phase bookkeeping ---
+
+void WorldImpl::markMoved(int proxy) {
+  if (proxy >= static_cast<int>(proxyMoved.size())) proxyMoved.resize(proxy + 1, 0);
+  if (proxyMoved[proxy]) return;
+  proxyMoved[proxy] = 1;
+  movedProxies.push_back(proxy);
+}
+
+void WorldImpl::createProxies(Body& body) {
+  body.proxies.clear();
+  for (size_t i = 0; i < body.shapes.size(); ++i) {
+    const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
+    const int proxy = tree.createProxy(box, (static_cast<int64_t>(body.id.index) << 8) | int64_t(i));
+    body.proxies.push_back(proxy);
+    markMoved(proxy);
+  }
+}
+
+void WorldImpl::destroyProxies(Body& body) {
+  for (const int proxy : body.proxies) {
+    if (proxy < static_cast<int>(proxyMoved.size()) && proxyMoved[proxy]) {
+      proxyMoved[proxy] = 0;
+      movedProxies.erase(std::find(movedProxies.begin(), movedProxies.end(), proxy));
+    }
+    tree.destroyProxy(proxy);
+  }
+  body.proxies.clear();
+}
+
+void WorldImpl::updateProxies(Body& body, bool forced) {
+  for (size_t i = 0; i < body.shapes.size(); ++i) {
+    const Aabb box = computeAabb(body.shapes[i], body.xf);
+    const int proxy = body.proxies[i];
+    if (!forced && tree.fatAabb(proxy).contains(box)) continue;
+    tree.moveProxy(proxy, box.inflated(kAabbMargin));
+    markMoved(proxy);
+  }
+}
+
+void WorldImpl::destroyContactsOf(int bodySlot) {
+  size_t write = 0;
+  for (size_t read = 0; read < contacts.size(); ++read) {
+    if (contacts[read].bodyA == bodySlot || contacts[read].bodyB == bodySlot) {
+      contactByKey.erase(contacts[read].key);
+      continue;
+    }
+    if (write != read) contacts[write] = contacts[read];
+    contactByKey[contacts[write].key] = static_cast<int>(write);
+    ++write;
+  }
+  contacts.resize(write);
+}
+
+bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
+  const Body& a = bodies.items[bodyA];
+  const Body& b = bodies.items[bodyB];
+  if (a.type != BodyType::Dynamic && b.type != BodyType::Dynamic) return false;
+  for (const int j : jointsOfBody[bodyA]) {
+    const Joint& joint = joints.items[j];
+    const bool connects = (joint.bodyA == bodyA && joint.bodyB == bodyB) ||
+                          (joint.bodyA == bodyB && joint.bodyB == bodyA);
+    if (connects && !joint.def.collideConnected) return false;
+  }
+  return true;
+}
+
+void WorldImpl::wakeBody(Body& body) {
+  body.awake = true;
+  body.sleepTime = 0.0;
+}
+
+// --- bodies ---
+
+BodyId World::createBody(const BodyDef& def, std::string* error) {
+  WorldImpl& w = *impl_;
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return BodyId();
+  };
+  const std::string why = validate(def);
+  if (!why.empty()) return fail(why);
+  if (!def.name.empty() && w.bodyByName.count(def.name)) {
+    return fail("name: a body named '" + def.name + "' already exists");
+  }
+  if (w.bodies.freeList.empty() && w.bodies.items.size() >= size_t(kMaxBodySlots)) {
+    return fail("the world already holds the maximum number of bodies");
+  }
+
+  std::vector<Shape> shapes;
+  for (size_t i = 0; i < def.shapes.size(); ++i) {
+    Shape shape;
+    const std::string shapeWhy = makeShape(def.shapes[i], &shape);
+    if (!shapeWhy.empty()) return fail("shapes[" + std::to_string(i) + "]." + shapeWhy);
+    shapes.push_back(shape);
+  }
+
+  // Mass: sum the shapes, then move every inertia to the common centre (parallel axis theorem).
+  MassData total;
+  if (def.type == BodyType::Dynamic) {
+    std::vector<MassData> parts;
+    for (const Shape& shape : shapes) {
+      parts.push_back(computeMass(shape));
+      total.mass += parts.back().mass;
+      total.center += parts.back().mass * parts.back().center;
+    }
+    if (!(total.mass > 0.0) && !(def.mass > 0.0)) {
+      return fail("mass: a dynamic body needs mass: give its shapes a density > 0 or set mass");
+    }
+    if (!(total.mass > 0.0)) {  // an explicit mass with massless shapes: spread it by area
+      for (size_t i = 0; i < shapes.size(); ++i) {
+        Shape unit = shapes[i];
+        unit.density = 1.0;
+        parts[i] = computeMass(unit);
+        total.mass += parts[i].mass;
+        total.center += parts[i].mass * parts[i].center;
+      }
+    }
+    total.center /= total.mass;
+    for (const MassData& part : parts) {
+      total.inertia += part.inertia + part.mass * (part.center - total.center).squaredNorm();
+    }
+    if (def.mass > 0.0) {
+      total.inertia *= def.mass / total.mass;
+      total.mass = def.mass;
+    }
+  }
+
+  const int slot = w.bodies.acquire();
+  if (slot >= static_cast<int>(w.jointsOfBody.size())) w.jointsOfBody.resize(slot + 1);
+  Body& body = w.bodies.items[slot];
+  body.id = BodyId{slot, w.bodies.generation[slot]};
+  body.name = def.name;
+  body.type = def.type;
+  body.shapes = std::move(shapes);
+  body.angle = def.angle;
+  body.xf = Transform(def.position, Rot(def.angle));
+  body.mass = total.mass;
+  body.invMass = total.mass > 0.0 ? 1.0 / total.mass : 0.0;
+  body.inertia = total.inertia;
+  body.invInertia = total.inertia > 0.0 ? 1.0 / total.inertia : 0.0;
+  body.localCenter = total.center;
+  body.center = body.xf.apply(body.localCenter);
+  if (def.type != BodyType::Static) {
+    body.linearVelocity = def.linearVelocity;
+    body.angularVelocity = def.angularVelocity;
+  }
+  body.linearDamping = def.linearDamping;
+  body.angularDamping = def.angularDamping;
+  body.bullet = def.bullet;
+  body.minExtent = std::numeric_limits<double>::infinity();
+  for (const Shape& shape : body.shapes) {
+    body.minExtent = std::min(body.minExtent, innerRadius(shape));
+    const Aabb box = computeAabb(shape, Transform());
+    for (const Vec2& corner : {box.lower, box.upper, Vec2(box.lower.x(), box.upper.y()),
+                               Vec2(box.upper.x(), box.lower.y())}) {
+      body.maxExtent = std::max(body.maxExtent, (corner - body.localCenter).norm());
+    }
+  }
+  w.createProxies(body);
+  if (!def.name.empty()) w.bodyByName[def.name] = slot;
+  return body.id;
+}
+
+bool World::destroyBody(BodyId id) {
+  WorldImpl& w = *impl_;
+  if (!isValid(id)) return false;
+  const std::vector<int> attached = w.jointsOfBody[id.index];
+  for (const int j : attached) destroyJoint(w.joints.items[j].id);
+  for (const Contact& contact : w.contacts) {
+    if (contact.bodyA == id.index) w.wakeBody(w.bodies.items[contact.bodyB]);
+    if (contact.bodyB == id.index) w.wakeBody(w.bodies.items[contact.bodyA]);
+  }
+  w.destroyContactsOf(id.index);
+  Body& body = w.bodies.items[id.index];
+  w.destroyProxies(body);
+  if (!body.name.empty()) w.bodyByName.erase(body.name);
+  w.bodies.release(id.index);
+  w.jointsOfBody[id.index].clear();
+  return true;
+}
+
+void World::clear() {
+  const WorldDef def = impl_->def;
+  impl_ = std::make_unique<WorldImpl>();
+  impl_->def = def;
+}
+
+// --- joints ---
+
+std::string World::validate(const JointDef& def) const {
+  const WorldImpl& w = *impl_;
+  if (!def.name.empty() && w.jointByName.count(def.name)) {
+    return "name: a joint named '" + def.name + "' already exists";
+  }
+  if (!isValid(def.bodyA)) return "body_a: no such body";
+  if (!isValid(def.bodyB)) return "body_b: no such body";
+  if (def.bodyA == def.bodyB) return "body_b: a joint needs two different bodies";
+  if (body(def.bodyA).type != BodyType::Dynamic && body(def.bodyB).type != BodyType::Dynamic) {
+    return "body_a, body_b: at least one of the two bodies must be dynamic";
+  }
+  if (def.type != JointType::Revolute && def.type != JointType::Prismatic &&
+      def.type != JointType::Weld && def.type != JointType::Distance) {
+    return "type: must be revolute, prismatic, weld or distance";
+  }
+  // Finite everywhere, even in fields a type does not use: a NaN is always a mistake.
+  if (!isFinite(def.anchor)) return "anchor: must be finite";
+  if (!isFinite(def.anchorB)) return "anchor_b: must be finite";
+  if (!std::isfinite(def.lower) || !std::isfinite(def.upper)) return "lower, upper: must be finite";
+  if (!std::isfinite(def.motorSpeed)) return "motor_speed: must be finite";
+  if (!std::isfinite(def.maxMotorTorque) || def.maxMotorTorque < 0.0) {
+    return "max_motor_torque: must be finite and >= 0";
+  }
+  if (!std::isfinite(def.frequency) || def.frequency < 0.0) {
+    return "frequency: must be finite and >= 0";
+  }
+  if (!std::isfinite(def.dampingRatio) || def.dampingRatio < 0.0) {
+    return "damping_ratio: must be finite and >= 0";
+  }
+  constexpr double kMinDistance = 0.001;  // m; shorter rods have no usable direction
+  switch (def.type) {
+    case JointType::Revolute:
+      if (def.enableLimit && def.lower > def.upper) return "lower: must not exceed upper";
+      break;
+    case JointType::Prismatic:
+      if (!isFinite(def.axis) || def.axis.isZero()) {
+        return "axis: must be a finite non-zero direction";
+      }
+      if (def.enableLimit && def.lower > def.upper) return "lower: must not exceed upper";
+      break;
+    case JointType::Weld:
+      break;
+    case JointType::Distance: {
+      if (!std::isfinite(def.length)) return "length: must be finite";
+      if (def.length > 0.0 && def.length < kMinDistance) return "length: must be >= 0.001 m";
+      if (!std::isfinite(def.minLength) || def.minLength < 0.0) {
+        return "min_length: must be finite and >= 0";
+      }
+      if (std::isnan(def.maxLength)) return "max_length: must be a number";
+      if (def.minLength > def.maxLength) return "min_length: must not exceed max_length";
+      if (def.length > 0.0 && (def.length < def.minLength || def.length > def.maxLength)) {
+        return "length: must be within [min_length, max_length]";
+      }
+      if (def.length <= 0.0) {
+        const Vec2 anchorB = def.useAnchorB ? def.anchorB : body(def.bodyB).xf.p;
+        if ((anchorB - def.anchor).norm() < kMinDistance) {
+          return "length: the anchors are closer than 0.001 m; give a length";
+        }
+      }
+      break;
+    }
+  }
+  return "";
+}
+
+JointId World::createJoint(const JointDef& def, std::string* error) {
+  WorldImpl& w = *impl_;
+  const std::string why = validate(def);
+  if (!why.empty()) {
+    if (error) *error = why;
+    return JointId();
+  }
+  const int slot = w.joints.acquire();
+  Joint& joint = w.joints.items[slot];
+  joint.id = JointId{slot, w.joints.generation[slot]};
+  joint.def = def;
+  joint.bodyA = def.bodyA.index;
+  joint.bodyB = def.bodyB.index;
+  Body& a = w.bodies.items[joint.bodyA];
+  Body& b = w.bodies.items[joint.bodyB];
+  initJoint(joint, a, b);
+  w.jointsOfBody[joint.bodyA].push_back(slot);
+  w.jointsOfBody[joint.bodyB].push_back(slot);
+  if (!def.name.empty()) w.jointByName[def.name] = slot;
+  if (!def.collideConnected) {  // contacts between the two bodies end now
+    size_t write = 0;
+    for (size_t read = 0; read < w.contacts.size(); ++read) {
+      const Contact& c = w.contacts[read];
+      const bool pair = (c.bodyA == joint.bodyA && c.bodyB == joint.bodyB) ||
+                        (c.bodyA == joint.bodyB && c.bodyB == joint.bodyA);
+      if (pair) {
+        w.contactByKey.erase(c.key);
+        continue;
+      }
+      if (write != read) w.contacts[write] = w.contacts[read];
+      w.contactByKey[w.contacts[write].key] = static_cast<int>(write);
+      ++write;
+    }
+    w.contacts.resize(write);
+  }
+  w.wakeBody(a);
+  w.wakeBody(b);
+  return joint.id;
+}
+
+bool World::destroyJoint(JointId id) {
+  WorldImpl& w = *impl_;
+  if (!isValid(id)) return false;
+  Joint& joint = w.joints.items[id.index];
+  for (const int slot : {joint.bodyA, joint.bodyB}) {
+    auto& list = w.jointsOfBody[slot];
+    list.erase(std::remove(list.begin(), list.end(), id.index), list.end());
+    w.wakeBody(w.bodies.items[slot]);
+    // The pair may collide again: let the broad phase report it anew.
+    for (const int proxy : w.bodies.items[slot].proxies) w.markMoved(proxy);
+  }
+  if (!joint.def.name.empty()) w.jointByName.erase(joint.def.name);
+  w.joints.release(id.index);
+  return true;
+}
+
+// --- lookup ---
+
+bool World::isValid(BodyId id) const { return impl_->bodies.isAlive(id.index, id.generation); }
+bool World::isValid(JointId id) const { return impl_->joints.isAlive(id.index, id.generation); }
+
+BodyId World::findBody(const std::string& name) const {
+  const auto it = impl_->bodyByName.find(name);
+  return it == impl_->bodyByName.end() ? BodyId() : impl_->bodies.items[it->second].id;
+}
+
+JointId World::findJoint(const std::string& name) const {
+  const auto it = impl_->jointByName.find(name);
+  return it == impl_->jointByName.end() ? JointId() : impl_->joints.items[it->second].id;
+}
+
+const Body& World::body(BodyId id) const { return impl_->bodies.items[id.index]; }
+const JointDef& World::jointDef(JointId id) const { return impl_->joints.items[id.index].def; }
+
+JointState World::jointState(JointId id) const {
+  const Joint& joint = impl_->joints.items[id.index];
+  return measureJoint(joint, impl_->bodies.items[joint.bodyA], impl_->bodies.items[joint.bodyB]);
+}
+
+std::vector<BodyId> World::bodies() const {
+  std::vector<BodyId> ids;
+  for (size_t i = 0; i < impl_->bodies.items.size(); ++i) {
+    if (impl_->bodies.alive[i]) ids.push_back(impl_->bodies.items[i].id);
+  }
+  return ids;
+}
+
+std::vector<JointId> World::joints() const {
+  std::vector<JointId> ids;
+  for (size_t i = 0; i < impl_->joints.items.size(); ++i) {
+    if (impl_->joints.alive[i]) ids.push_back(impl_->joints.items[i].id);
+  }
+  return ids;
+}
+
+size_t World::bodyCount() const { return impl_->bodies.count(); }
+size_t World::jointCount() const { return impl_->joints.count(); }
+
+// --- changing state ---
+
+bool World::setTransform(BodyId id, const Vec2& position, double angle) {
+  if (!isValid(id) || !isFinite(position) || !std::isfinite(angle)) return false;
+  Body& body = impl_->bodies.items[id.index];
+  body.angle = angle;
+  body.xf = Transform(position, Rot(angle));
+  body.center = body.xf.apply(body.localCenter);
+  impl_->updateProxies(body, true);
+  impl_->wakeBody(body);
+  return true;
+}
+
+bool World::setVelocity(BodyId id, const Vec2& linear, double angular) {
+  if (!isValid(id) || !isFinite(linear) || !std::isfinite(angular)) return false;
+  Body& body = impl_->bodies.items[id.index];
+  if (body.type == BodyType::Static) return false;
+  body.linearVelocity = linear;
+  body.angularVelocity = angular;
+  impl_->wakeBody(body);
+  return true;
+}
+
+bool World::applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint) {
+  if (!isValid(id) || !isFinite(force) || !isFinite(worldPoint)) return false;
+  Body& body = impl_->bodies.items[id.index];
+  if (body.type != BodyType::Dynamic) return false;
+  body.force += force;
+  body.torque += cross(Vec2(worldPoint - body.center), force);
+  impl_->wakeBody(body);
+  return true;
+}
+
+bool World::applyTorque(BodyId id, double torque) {
+  if (!isValid(id) || !std::isfinite(torque)) return false;
+  Body& body = impl_->bodies.items[id.index];
+  if (body.type != BodyType::Dynamic) return false;
+  body.torque += torque;
+  impl_->wakeBody(body);
+  return true;
+}
+
+bool World::setJointMotor(JointId id, bool enable, double speed, double maxForceOrTorque) {
+  if (!isValid(id) || !std::isfinite(speed) || !std::isfinite(maxForceOrTorque) ||
+      maxForceOrTorque < 0.0) {
+    return false;
+  }
+  Joint& joint = impl_->joints.items[id.index];
+  joint.def.enableMotor = enable;
+  joint.def.motorSpeed = speed;
+  joint.def.maxMotorTorque = maxForceOrTorque;
+  impl_->wakeBody(impl_->bodies.items[joint.bodyA]);
+  impl_->wakeBody(impl_->bodies.items[joint.bodyB]);
+  return true;
+}
+
+// --- read-outs ---
+
+double World::time() const { return impl_->time; }
+uint64_t World::stepCount() const { return impl_->steps; }
+
+namespace {
+bool touching(const Contact& contact, int point, double linearSlop) {
+  return contact.manifold.points[point].separation <= linearSlop ||
+         contact.normalImpulse[point] > 0.0;
+}
+}  // namespace
+
+std::vector<ContactInfo> World::contacts() const {
+  std::vector<ContactInfo> out;
+  for (const Contact& contact : impl_->contacts) {
+    for (int i = 0; i < contact.manifold.pointCount; ++i) {
+      if (!touching(contact, i, impl_->def.linearSlop)) continue;
+      ContactInfo info;
+      info.bodyA = impl_->bodies.items[contact.bodyA].id;
+      info.bodyB = impl_->bodies.items[contact.bodyB].id;
+      info.point = contact.manifold.points[i].point;
+      info.normal = contact.manifold.normal;
+      info.separation = contact.manifold.points[i].separation;
+      info.normalImpulse = contact.normalImpulse[i];
+      info.tangentImpulse = contact.tangentImpulse[i];
+      out.push_back(info);
+    }
+  }
+  return out;
+}
+
+size_t World::contactCount() const {
+  size_t count = 0;
+  for (const Contact& contact : impl_->contacts) {
+    for (int i = 0; i < contact.manifold.pointCount; ++i) {
+      count += touching(contact, i, impl_->def.linearSlop) ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+uint64_t World::hash() const {
+  uint64_t h = 14695981039346656037ull;  // FNV-1a offset basis
+  auto mix = [&h](const void* data, size_t size) {
+    const unsigned char* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) {
+      h ^= bytes[i];
+      h *= 1099511628211ull;  // FNV prime
+    }
+  };
+  for (size_t i = 0; i < impl_->bodies.items.size(); ++i) {
+    if (!impl_->bodies.alive[i]) continue;
+    const Body& b = impl_->bodies.items[i];
+    const double state[6] = {b.xf.p.x(),         b.xf.p.y(),         b.angle,
+                             b.linearVelocity.x(), b.linearVelocity.y(), b.angularVelocity};
+    mix(&i, sizeof(i));
+    mix(state, sizeof(state));
+  }
+  return h;
+}
+
+}  // namespace impulse2d

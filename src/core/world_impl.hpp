@@ -1,0 +1,117 @@
+// The world's internals: slot storage for bodies and joints, the broad phase and the arbiters.
+// world.cpp holds the public API and bookkeeping; world_step.cpp the step pipeline.
+#pragma once
+
+#include "contact.hpp"
+#include "contact_solver.hpp"
+#include "dynamic_tree.hpp"
+#include "joint.hpp"
+
+#include <impulse2d/world.hpp>
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace impulse2d {
+
+/// Fat boxes are this much larger than their shapes, so a body that moves a little does not touch
+/// the tree at all.
+constexpr double kAabbMargin = 0.1;
+
+/// Slot storage: stable indices, a generation per slot to reject stale handles, and a free list
+/// so that create/destroy churn reuses memory instead of growing.
+template <class T>
+struct Slots {
+  std::vector<T> items;
+  std::vector<uint32_t> generation;
+  std::vector<char> alive;
+  std::vector<int> freeList;
+
+  int acquire() {
+    if (!freeList.empty()) {
+      const int index = freeList.back();
+      freeList.pop_back();
+      alive[index] = 1;
+      return index;
+    }
+    items.emplace_back();
+    generation.push_back(1);
+    alive.push_back(1);
+    return static_cast<int>(items.size()) - 1;
+  }
+  void release(int index) {
+    items[index] = T();
+    alive[index] = 0;
+    ++generation[index];
+    freeList.push_back(index);
+  }
+  bool isAlive(int index, uint32_t gen) const {
+    return index >= 0 && index < static_cast<int>(items.size()) && alive[index] &&
+           generation[index] == gen;
+  }
+  size_t count() const { return items.size() - freeList.size(); }
+};
+
+/// A body the solver moves this step: dynamic and awake.
+inline bool isActive(const Body& body) { return body.type == BodyType::Dynamic && body.awake; }
+/// A body whose motion can disturb others: awake and not static.
+inline bool isMoving(const Body& body) {
+  return body.type == BodyType::Dynamic ? body.awake
+                                        : body.type == BodyType::Kinematic &&
+                                              (body.linearVelocity.squaredNorm() > 0.0 ||
+                                               body.angularVelocity != 0.0);
+}
+
+struct WorldImpl {
+  WorldDef def;
+  Slots<Body> bodies;
+  Slots<Joint> joints;
+  std::vector<std::vector<int>> jointsOfBody;  // by body slot
+  std::unordered_map<std::string, int> bodyByName;
+  std::unordered_map<std::string, int> jointByName;
+
+  DynamicTree tree;
+  std::vector<int> movedProxies;
+  std::vector<char> proxyMoved;  // by proxy id
+
+  std::vector<Contact> contacts;  // solved in this order
+  std::unordered_map<uint64_t, int> contactByKey;
+
+  ContactSolver contactSolver;
+  // Reused buffers of the island pass (island_sleep.cpp).
+  struct FastBody {  // moved farther than the speculative margin this step
+    int slot;
+    Vec2 startCenter;
+    double startAngle;
+  };
+  std::vector<FastBody> fastBodies;
+  std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
+  std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
+  double time = 0.0;
+  uint64_t steps = 0;
+
+  // Broad phase bookkeeping (world.cpp).
+  void createProxies(Body& body);
+  void destroyProxies(Body& body);
+  void markMoved(int proxy);
+  /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
+  void updateProxies(Body& body, bool forced);
+  void destroyContactsOf(int bodySlot);
+  bool shouldCollide(int bodyA, int bodyB) const;
+  void wakeBody(Body& body);
+
+  // The step pipeline (world_step.cpp).
+  void updateBroadPhase();
+  void findNewContacts();
+  void updateContacts();
+  void integrateVelocities(double dt);
+  void solve(double dt);
+  void integratePositions(double dt);
+  void solveContinuous();
+  void correctPositions();
+  void updateSleep(double dt);
+  void clearForces();
+};
+
+}  // namespace impulse2d

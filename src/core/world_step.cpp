@@ -1,0 +1,196 @@
+// World::step, top to bottom as the algorithm, and the stages it calls.
+#include "world_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace impulse2d {
+
+void World::step() {
+  WorldImpl& w = *impl_;
+  const double dt = w.def.timeStep;
+  w.updateBroadPhase();       // 1. refit the fat boxes of bodies that left them
+  w.findNewContacts();        // 2. newly overlapping pairs become arbiters
+  w.updateContacts();         // 3. narrow phase; keep the impulses of matching contact ids
+  w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
+  w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
+  w.integratePositions(dt);   // 6. move with the solved velocities
+  w.solveContinuous();        // 7. fast bodies stop at their first impact instead of tunnelling
+  w.correctPositions();       // 8. NGS solver only: push remaining overlaps apart
+  w.updateSleep(dt);          // 9. islands still for long enough fall asleep
+  w.clearForces();
+  w.time += dt;
+  ++w.steps;
+}
+
+void WorldImpl::updateBroadPhase() {
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    Body& body = bodies.items[i];
+    if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+    updateProxies(body, false);
+  }
+}
+
+void WorldImpl::findNewContacts() {
+  std::vector<std::pair<int, int>> pairs;
+  for (const int proxy : movedProxies) {
+    if (!proxyMoved[proxy]) continue;  // destroyed since it moved
+    tree.query(tree.fatAabb(proxy), [&](int other) {
+      // A pair of two moved proxies is reported by the lower one only.
+      if (other == proxy || (proxyMoved[other] && other < proxy)) return;
+      pairs.emplace_back(std::min(proxy, other), std::max(proxy, other));
+    });
+  }
+  for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
+  movedProxies.clear();
+
+  std::vector<Contact> fresh;
+  for (const auto& [p, q] : pairs) {
+    int slotA = static_cast<int>(tree.userData(p) >> 8), shapeA = tree.userData(p) & 0xff;
+    int slotB = static_cast<int>(tree.userData(q) >> 8), shapeB = tree.userData(q) & 0xff;
+    if (slotA == slotB) continue;
+    if (slotA > slotB) {
+      std::swap(slotA, slotB);
+      std::swap(shapeA, shapeB);
+    }
+    const uint64_t key = contactKey(slotA, shapeA, slotB, shapeB);
+    if (contactByKey.count(key) || !shouldCollide(slotA, slotB)) continue;
+    Contact contact;
+    contact.key = key;
+    contact.bodyA = slotA;
+    contact.bodyB = slotB;
+    contact.shapeA = shapeA;
+    contact.shapeB = shapeB;
+    const Shape& sa = bodies.items[slotA].shapes[shapeA];
+    const Shape& sb = bodies.items[slotB].shapes[shapeB];
+    contact.friction = mixFriction(sa.friction, sb.friction);
+    contact.restitution = mixRestitution(sa.restitution, sb.restitution);
+    contactByKey.emplace(key, -1);
+    fresh.push_back(contact);
+  }
+  // The tree's shape depends on history; sorting by key makes the solve order depend only on
+  // which pairs exist.
+  std::sort(fresh.begin(), fresh.end(),
+            [](const Contact& x, const Contact& y) { return x.key < y.key; });
+  for (Contact& contact : fresh) {
+    contactByKey[contact.key] = static_cast<int>(contacts.size());
+    contacts.push_back(contact);
+  }
+}
+
+void WorldImpl::updateContacts() {
+  size_t write = 0;
+  for (size_t read = 0; read < contacts.size(); ++read) {
+    Contact& contact = contacts[read];
+    const Body& a = bodies.items[contact.bodyA];
+    const Body& b = bodies.items[contact.bodyB];
+    const int proxyA = a.proxies[contact.shapeA], proxyB = b.proxies[contact.shapeB];
+    if (!tree.fatAabb(proxyA).overlaps(tree.fatAabb(proxyB))) {
+      contactByKey.erase(contact.key);
+      continue;
+    }
+    // Two bodies that cannot move relative to each other keep last step's manifold.
+    if (isMoving(a) || isMoving(b)) {
+      updateContact(contact, a, b, def.speculativeDistance, def.warmStarting);
+      // Something moving now touches a sleeper: wake it before the solver runs.
+      if (contact.manifold.pointCount > 0) {
+        if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) wakeBody(bodies.items[contact.bodyB]);
+        if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake) wakeBody(bodies.items[contact.bodyA]);
+      }
+    }
+    if (write != read) contacts[write] = contact;
+    contactByKey[contacts[write].key] = static_cast<int>(write);
+    ++write;
+  }
+  contacts.resize(write);
+}
+
+void WorldImpl::integrateVelocities(double dt) {
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    Body& body = bodies.items[i];
+    if (!bodies.alive[i] || body.type != BodyType::Dynamic || !body.awake) continue;
+    body.linearVelocity += dt * (def.gravity + body.invMass * body.force);
+    body.angularVelocity += dt * body.invInertia * body.torque;
+    // Implicit damping: stable for any damping coefficient and time step.
+    body.linearVelocity *= 1.0 / (1.0 + dt * body.linearDamping);
+    body.angularVelocity *= 1.0 / (1.0 + dt * body.angularDamping);
+  }
+}
+
+void WorldImpl::solve(double dt) {
+  contactSolver.prepare(contacts, bodies.items, def, dt);
+  activeJoints.clear();
+  for (size_t j = 0; j < joints.items.size(); ++j) {
+    if (!joints.alive[j]) continue;
+    Joint& joint = joints.items[j];
+    if (!isActive(bodies.items[joint.bodyA]) && !isActive(bodies.items[joint.bodyB])) continue;
+    activeJoints.push_back(static_cast<int>(j));
+    prepareJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def, dt);
+    if (!def.warmStarting) {
+      joint.pointImpulse.setZero();
+      joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
+    }
+  }
+
+  // Warm start: apply last step's impulses first, so the iterations only refine them.
+  for (const int j : activeJoints) {
+    Joint& joint = joints.items[j];
+    warmStartJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB]);
+  }
+  contactSolver.warmStart();
+
+  for (int iteration = 0; iteration < def.velocityIterations; ++iteration) {
+    for (const int j : activeJoints) {
+      Joint& joint = joints.items[j];
+      solveJointVelocity(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], dt);
+    }
+    contactSolver.solveVelocities();
+  }
+  contactSolver.applyRestitution(def.restitutionThreshold);
+  contactSolver.storeImpulses();
+}
+
+void WorldImpl::integratePositions(double dt) {
+  fastBodies.clear();
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    Body& body = bodies.items[i];
+    if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+    const Vec2 move = dt * body.linearVelocity;
+    const double turn = dt * body.angularVelocity;
+    // A body that moves less than a quarter of its own thickness in a step cannot skip past
+    // anything as thick as itself, and its speculative contacts catch it before it sinks deep;
+    // faster ones get the continuous pass.
+    const double reach = move.norm() + std::abs(turn) * body.maxExtent;
+    if (body.type == BodyType::Dynamic &&
+        reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
+      fastBodies.push_back({static_cast<int>(i), body.center, body.angle});
+    }
+    body.center += move;
+    body.angle += turn;
+    syncTransform(body);
+  }
+}
+
+void WorldImpl::correctPositions() {
+  if (def.solver != SolverType::NonlinearGaussSeidel) return;
+  for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
+    bool jointsOk = true;
+    for (const int j : activeJoints) {
+      Joint& joint = joints.items[j];
+      jointsOk &= solveJointPosition(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def);
+    }
+    const bool contactsOk = contactSolver.solvePositions(def);
+    if (jointsOk && contactsOk) break;
+  }
+}
+
+void WorldImpl::clearForces() {
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    if (!bodies.alive[i]) continue;
+    bodies.items[i].force.setZero();
+    bodies.items[i].torque = 0.0;
+  }
+}
+
+}  // namespace impulse2d

@@ -1,0 +1,68 @@
+// Small scene builders shared by the physics tests.
+#pragma once
+
+#include <impulse2d/world.hpp>
+
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+namespace test {
+
+inline BodyId addBox(World& world, const std::string& name, const Vec2& position, double w,
+                     double h, BodyType type, double density = 1.0, double friction = 0.6) {
+  BodyDef def;
+  def.name = name;
+  def.type = type;
+  def.position = position;
+  ShapeDef shape;
+  shape.kind = ShapeKind::Box;
+  shape.size = Vec2(w, h);
+  shape.density = density;
+  shape.friction = friction;
+  def.shapes.push_back(shape);
+  return world.createBody(def);
+}
+
+inline BodyId addCircle(World& world, const std::string& name, const Vec2& position, double radius,
+                        BodyType type, double density = 1.0) {
+  BodyDef def;
+  def.name = name;
+  def.type = type;
+  def.position = position;
+  ShapeDef shape;
+  shape.kind = ShapeKind::Circle;
+  shape.radius = radius;
+  shape.density = density;
+  def.shapes.push_back(shape);
+  return world.createBody(def);
+}
+
+/// A static ground whose top surface is y = 0.
+inline BodyId addGround(World& world, double width = 40.0) {
+  return addBox(world, "ground", Vec2(0.0, -0.5), width, 1.0, BodyType::Static);
+}
+
+struct Placed {
+  BodyId id;
+  Vec2 start;
+};
+
+/// A pyramid of `rows` rows of boxes of side `size` standing on y = 0, centred on x = 0, each
+/// row resting exactly on the one below (no gap, no overlap).
+inline std::vector<Placed> addPyramid(World& world, int rows, double size,
+                                      const Vec2& origin = Vec2::Zero()) {
+  std::vector<Placed> out;
+  for (int row = 0; row < rows; ++row) {
+    const int count = rows - row;
+    for (int i = 0; i < count; ++i) {
+      const Vec2 p = origin + Vec2((i - 0.5 * (count - 1)) * size, (row + 0.5) * size);
+      const std::string name = "box_" + std::to_string(row) + "_" + std::to_string(i);
+      out.push_back({addBox(world, name, p, size, size, BodyType::Dynamic), p});
+    }
+  }
+  return out;
+}
+
+}  // namespace test
+}  // namespace impulse2d

@@ -1,0 +1,87 @@
+// Sleeping: still islands stop moving exactly, and anything that disturbs them wakes them.
+#include <gtest/gtest.h>
+#include <impulse2d/world.hpp>
+
+#include "test_scenes.hpp"
+
+namespace impulse2d {
+namespace {
+
+using test::addBox;
+using test::addCircle;
+
+void stepSeconds(World& world, double seconds) {
+  const double end = world.time() + seconds;
+  while (world.time() < end - 1e-9) world.step();
+}
+
+TEST(Sleep, ASettledStackFallsAsleepAndStaysBitForBitStill) {
+  World world;
+  test::addGround(world);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 5; ++i) {
+    boxes.push_back(
+        addBox(world, "b" + std::to_string(i), Vec2(0, 0.5 + i), 1, 1, BodyType::Dynamic));
+  }
+  stepSeconds(world, 3.0);
+  for (BodyId id : boxes) EXPECT_FALSE(world.body(id).awake);
+  const uint64_t asleep = world.hash();
+  stepSeconds(world, 1.0);
+  EXPECT_EQ(world.hash(), asleep);
+  EXPECT_GT(world.contactCount(), 0u) << "sleeping contacts are still reported";
+}
+
+TEST(Sleep, AForceWakesTheWholeIsland) {
+  World world;
+  test::addGround(world);
+  const BodyId bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  const BodyId top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  ASSERT_FALSE(world.body(top).awake);
+  world.applyForce(bottom, Vec2(200.0, 0.0), world.body(bottom).center);
+  world.step();
+  EXPECT_TRUE(world.body(bottom).awake);
+  EXPECT_TRUE(world.body(top).awake) << "the box on top is in the same island";
+  EXPECT_GT(world.body(bottom).linearVelocity.x(), 0.0);
+}
+
+TEST(Sleep, AFallingBodyWakesWhatItLandsOn) {
+  World world;
+  test::addGround(world);
+  const BodyId box = addBox(world, "box", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  ASSERT_FALSE(world.body(box).awake);
+  const Vec2 before = world.body(box).xf.p;
+  addCircle(world, "ball", Vec2(0.4, 4.0), 0.3, BodyType::Dynamic, 50.0);
+  bool woke = false;
+  for (int i = 0; i < 200 && !woke; ++i) {
+    world.step();
+    woke = world.body(box).awake;
+  }
+  EXPECT_TRUE(woke);
+  stepSeconds(world, 0.2);
+  EXPECT_NE(world.body(box).xf.p, before) << "the heavy ball's impact moves the box";
+}
+
+TEST(Sleep, TeleportingWakesAndSleepCanBeTurnedOff) {
+  WorldDef def;
+  def.enableSleep = false;
+  World world(def);
+  test::addGround(world);
+  const BodyId box = addBox(world, "box", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  EXPECT_TRUE(world.body(box).awake);
+
+  World sleepy;
+  test::addGround(sleepy);
+  const BodyId other = addBox(sleepy, "box", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(sleepy, 3.0);
+  ASSERT_FALSE(sleepy.body(other).awake);
+  sleepy.setTransform(other, Vec2(0, 3.0), 0.0);
+  sleepy.step();
+  EXPECT_TRUE(sleepy.body(other).awake);
+  EXPECT_LT(sleepy.body(other).xf.p.y(), 3.0) << "it falls again";
+}
+
+}  // namespace
+}  // namespace impulse2d
