@@ -33,6 +33,35 @@ void applyImpulse(Body& a, Body& b, const Vec2& rA, const Vec2& rB, const Vec2& 
   b.angularVelocity += b.invInertia * cross(rB, impulse);
 }
 
+// The 2x2 linear complementarity problem  w = K x + b,  x >= 0,  w >= 0,  x_i w_i = 0  has few
+// enough cases to try them all: both rows active, only the first, only the second, neither.
+// Returns false when none fits (round-off on a nearly degenerate pair).
+bool solveTwoPointLcp(double k11, double k12, double k22, double b1, double b2, double* x1,
+                      double* x2) {
+  const double det = k11 * k22 - k12 * k12;  // > 0: only well-conditioned pairs come here
+  double y1 = -(k22 * b1 - k12 * b2) / det;
+  double y2 = -(k11 * b2 - k12 * b1) / det;
+  if (!(y1 >= 0.0 && y2 >= 0.0)) {
+    y1 = -b1 / k11;
+    y2 = 0.0;
+    if (!(y1 >= 0.0 && k12 * y1 + b2 >= 0.0)) {
+      y1 = 0.0;
+      y2 = -b2 / k22;
+      if (!(y2 >= 0.0 && k12 * y2 + b1 >= 0.0)) {
+        y1 = y2 = 0.0;
+        if (!(b1 >= 0.0 && b2 >= 0.0)) return false;
+      }
+    }
+  }
+  *x1 = y1;
+  *x2 = y2;
+  return true;
+}
+
+bool wellConditioned(double k11, double k12, double k22) {
+  return k11 * k11 < kMaxBlockCondition * (k11 * k22 - k12 * k12);
+}
+
 }  // namespace
 
 void syncTransform(Body& body) {
@@ -94,7 +123,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& b
       c.k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
       c.k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
       c.k12 = m + a.invInertia * rn1A * rn2A + b.invInertia * rn1B * rn2B;
-      c.blockSolve = c.k11 * c.k11 < kMaxBlockCondition * (c.k11 * c.k22 - c.k12 * c.k12);
+      c.blockSolve = wellConditioned(c.k11, c.k12, c.k22);
     }
     constraints_.push_back(c);
   }
@@ -142,38 +171,21 @@ void ContactSolver::solveVelocities() {
   }
 }
 
-// Both normal impulses of a two-point manifold at once: the 2x2 linear complementarity problem
-//   vn = K x + b',  x >= 0,  vn >= 0,  x_i vn_i = 0
-// (x the accumulated impulses, vn the normal velocities above their targets) has few enough
-// cases to try them all: both points pushing, only the first, only the second, neither. Solving
-// the pair exactly removes the left-right bias of one-by-one Gauss-Seidel that makes stacks lean.
+// Both normal impulses of a two-point manifold at once. Solving the pair exactly removes the
+// left-right bias of one-by-one Gauss-Seidel that makes stacks lean.
 void ContactSolver::solveNormalBlock(ContactConstraint& c) {
   Body& a = *c.a;
   Body& b = *c.b;
   ContactConstraintPoint& p1 = c.points[0];
   ContactConstraintPoint& p2 = c.points[1];
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
-  // b' = vn - target - K x_old, so that vn_new = K x_new + b'.
+  // With x the accumulated impulses, vn - target = K (x - x_old) + (vn_old - target).
   const double b1 = relativeVelocity(a, b, p1.rA, p1.rB).dot(c.normal) - p1.targetVelocity -
                     (c.k11 * x1Old + c.k12 * x2Old);
   const double b2 = relativeVelocity(a, b, p2.rA, p2.rB).dot(c.normal) - p2.targetVelocity -
                     (c.k12 * x1Old + c.k22 * x2Old);
   double x1 = 0.0, x2 = 0.0;
-  const double det = c.k11 * c.k22 - c.k12 * c.k12;  // > 0, checked in prepare
-  x1 = -(c.k22 * b1 - c.k12 * b2) / det;
-  x2 = -(c.k11 * b2 - c.k12 * b1) / det;
-  if (!(x1 >= 0.0 && x2 >= 0.0)) {
-    x1 = -b1 / c.k11;  // only the first point pushes
-    x2 = 0.0;
-    if (!(x1 >= 0.0 && c.k12 * x1 + b2 >= 0.0)) {
-      x1 = 0.0;  // only the second
-      x2 = -b2 / c.k22;
-      if (!(x2 >= 0.0 && c.k12 * x2 + b1 >= 0.0)) {
-        x1 = x2 = 0.0;  // neither; if even that violates vn >= 0 keep the old impulses
-        if (!(b1 >= 0.0 && b2 >= 0.0)) return;
-      }
-    }
-  }
+  if (!solveTwoPointLcp(c.k11, c.k12, c.k22, b1, b2, &x1, &x2)) return;
   applyImpulse(a, b, p1.rA, p1.rB, (x1 - x1Old) * c.normal);
   applyImpulse(a, b, p2.rA, p2.rB, (x2 - x2Old) * c.normal);
   p1.normalImpulse = x1;
@@ -210,26 +222,56 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
   for (ContactConstraint& c : constraints_) {
     Body& a = *c.a;
     Body& b = *c.b;
+    // Re-measure each point at the current (partly corrected) poses.
+    const Vec2 normal = a.xf.q.apply(c.localNormal);
+    Vec2 rA[2], rB[2];
+    double correction[2];
     for (int i = 0; i < c.pointCount; ++i) {
-      const ContactConstraintPoint& p = c.points[i];
-      // Re-measure the separation at the current (partly corrected) poses.
-      const Vec2 normal = a.xf.q.apply(c.localNormal);
-      const Vec2 pointA = a.center + a.xf.q.apply(p.localA);
-      const Vec2 pointB = b.center + b.xf.q.apply(p.localB);
+      const Vec2 pointA = a.center + a.xf.q.apply(c.points[i].localA);
+      const Vec2 pointB = b.center + b.xf.q.apply(c.points[i].localB);
       const double separation = (pointB - pointA).dot(normal);
       const Vec2 mid = 0.5 * (pointA + pointB);
-      const Vec2 rA = mid - a.center, rB = mid - b.center;
+      rA[i] = mid - a.center;
+      rB[i] = mid - b.center;
       deepest = std::min(deepest, separation);
-      const double correction = std::clamp(def.baumgarte * (separation + def.linearSlop),
-                                           -kMaxLinearCorrection, 0.0);
-      const double mass = effectiveMass(a, b, rA, rB, normal);
-      const Vec2 impulse = -correction * mass * normal;
+      correction[i] = std::clamp(def.baumgarte * (separation + def.linearSlop),
+                                 -kMaxLinearCorrection, 0.0);
+    }
+    double push[2] = {0.0, 0.0};
+    bool solved = false;
+    if (c.pointCount == 2) {
+      // Both points together, as in the velocity pass: one after the other would tilt the body
+      // a little every pass, and a tall stack leans over.
+      const double rn1A = cross(rA[0], normal), rn1B = cross(rB[0], normal);
+      const double rn2A = cross(rA[1], normal), rn2B = cross(rB[1], normal);
+      const double m = a.invMass + b.invMass;
+      const double k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
+      const double k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
+      const double k12 = m + a.invInertia * rn1A * rn2A + b.invInertia * rn1B * rn2B;
+      solved = wellConditioned(k11, k12, k22) &&
+               solveTwoPointLcp(k11, k12, k22, correction[0], correction[1], &push[0], &push[1]);
+    }
+    for (int i = 0; i < c.pointCount; ++i) {
+      if (!solved) {  // one point, or a pair too degenerate for the block: one at a time
+        const Vec2 pointA = a.center + a.xf.q.apply(c.points[i].localA);
+        const Vec2 pointB = b.center + b.xf.q.apply(c.points[i].localB);
+        const Vec2 n = a.xf.q.apply(c.localNormal);
+        const double separation = (pointB - pointA).dot(n);
+        const double corr = std::clamp(def.baumgarte * (separation + def.linearSlop),
+                                       -kMaxLinearCorrection, 0.0);
+        rA[i] = 0.5 * (pointA + pointB) - a.center;
+        rB[i] = 0.5 * (pointA + pointB) - b.center;
+        push[i] = -corr * effectiveMass(a, b, rA[i], rB[i], n);
+      }
+      const Vec2 impulse = push[i] * normal;
       a.center -= a.invMass * impulse;
-      a.angle -= a.invInertia * cross(rA, impulse);
+      a.angle -= a.invInertia * cross(rA[i], impulse);
       b.center += b.invMass * impulse;
-      b.angle += b.invInertia * cross(rB, impulse);
-      if (a.invMass > 0.0 || a.invInertia > 0.0) syncTransform(a);
-      if (b.invMass > 0.0 || b.invInertia > 0.0) syncTransform(b);
+      b.angle += b.invInertia * cross(rB[i], impulse);
+      if (!solved || i == 1) {
+        if (a.invMass > 0.0 || a.invInertia > 0.0) syncTransform(a);
+        if (b.invMass > 0.0 || b.invInertia > 0.0) syncTransform(b);
+      }
     }
   }
   return deepest >= -3.0 * def.linearSlop;
