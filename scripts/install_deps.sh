@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages impulse2d needs to build, run and test (skips what is there).
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake clang-format
+  catkin python3-catkin-pkg ros-core-dev python3-rostest python3-rosunit
+  libeigen3-dev libyaml-cpp-dev libgtest-dev googletest
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then exit 0; fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "impulse2d: installing ${missing[*]}" >&2
+$SUDO apt-get update -q
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

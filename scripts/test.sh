@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# One command from a fresh machine to every test: installs what is missing, builds the catkin
+# workspace from scratch, runs the unit tests and rostests (catkin run_tests), then builds the
+# ROS-free core with AddressSanitizer + UndefinedBehaviorSanitizer and runs its unit tests again.
+# Ends with "N passed, N failed" and exits non-zero on any failure or build error.
+set -uo pipefail
+REPO="$(cd "$(dirname "$0")/.." && pwd)"
+export PATH="/usr/bin:$PATH"
+export IMPULSE2D_WS="${IMPULSE2D_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/impulse2d_ws}"
+WS="$IMPULSE2D_WS"
+ASAN_BUILD="$WS/build_sanitize"
+RESULTS="$WS/results"
+failed_steps=0
+
+step() {  # step NAME COMMAND...: runs a stage, counts it as a failure when it fails
+  local name="$1"; shift
+  echo "=== $name" >&2
+  if ! "$@"; then
+    echo "=== $name FAILED" >&2
+    failed_steps=$((failed_steps + 1))
+    return 1
+  fi
+}
+
+step "install dependencies" "$REPO/scripts/install_deps.sh" || { echo "0 passed, 1 failed"; exit 1; }
+rm -rf "$RESULTS"
+mkdir -p "$RESULTS"
+if step "build (catkin)" "$REPO/scripts/build.sh" --clean >/dev/null; then
+  # run_tests exits 0 even when tests fail: the XML results below are what counts.
+  step "unit tests and rostests" catkin_make -C "$WS" run_tests -DPYTHON_EXECUTABLE=/usr/bin/python3 -j2 >&2
+  cp -r "$WS/build/test_results" "$RESULTS/catkin" 2>/dev/null || true
+fi
+
+# Sanitizers: the core alone, built without catkin, so it also proves the core is ROS-free.
+if step "build (ASan+UBSan, core only)" bash -c "cmake -S '$REPO' -B '$ASAN_BUILD' -DIMPULSE2D_CORE_ONLY=ON -DIMPULSE2D_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >&2 && cmake --build '$ASAN_BUILD' -j2 >&2"; then
+  mkdir -p "$RESULTS/sanitize"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    step "unit tests under ASan+UBSan" "$ASAN_BUILD/impulse2d_unit_tests" \
+    --gtest_output="xml:$RESULTS/sanitize/impulse2d_unit_tests.xml" >&2
+fi
+
+# Count test cases from every JUnit XML written (gtest and rostest both write them).
+read -r total failures < <(python3 - "$RESULTS" <<'PY'
+import glob, sys, xml.etree.ElementTree as ET
+total = failed = 0
+for path in glob.glob(sys.argv[1] + "/**/*.xml", recursive=True):
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError:
+        total += 1; failed += 1; continue
+    for case in root.iter("testcase"):
+        total += 1
+        if case.find("failure") is not None or case.find("error") is not None:
+            failed += 1
+print(total, failed)
+PY
+)
+passed=$((total - failures))
+failed=$((failures + failed_steps))
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ] && [ "$total" -gt 0 ]

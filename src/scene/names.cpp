@@ -1,0 +1,45 @@
+// Name rules of scenes; they match World::validate(BodyDef) so a name is refused in one wording
+// whether it comes from a scene file or a ROS service.
+#include "names.hpp"
+
+namespace impulse2d {
+namespace scene_detail {
+namespace {
+
+constexpr size_t kMaxNameLength = 256;
+// Quoted user text is cut here: a message is read by a person, often on one terminal line.
+constexpr size_t kMaxQuotedLength = 64;
+
+bool frameNameChar(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '/' || c == '-';
+}
+
+}  // namespace
+
+std::string checkName(const std::string& name) {
+  if (name.empty()) return "must not be empty";
+  if (name.size() > kMaxNameLength) {
+    return "must be at most " + std::to_string(kMaxNameLength) + " characters";
+  }
+  for (char c : name) {
+    if (!frameNameChar(c)) return "may only contain letters, digits, '_', '-' and '/'";
+  }
+  if (name[0] == '/') return "must not start with '/'";
+  return "";
+}
+
+std::string printable(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (out.size() == kMaxQuotedLength) return out + "...";
+    const unsigned char u = static_cast<unsigned char>(c);
+    out += (u < 0x20 || u == 0x7f) ? '?' : c;
+  }
+  return out;
+}
+
+std::string quoted(const std::string& text) { return "'" + printable(text) + "'"; }
+
+}  // namespace scene_detail
+}  // namespace impulse2d

@@ -1,0 +1,19 @@
+// The parsers of one scene entry each; they throw SceneError naming the key within the entry.
+#pragma once
+
+#include <impulse2d/scene.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+namespace impulse2d {
+namespace scene_detail {
+
+/// The `world:` map into scene->world, plane and frameId.
+void parseWorld(const YAML::Node& node, Scene* scene);
+/// One entry of `bodies:`, checked with World::validate(BodyDef).
+BodyDef parseBody(const YAML::Node& node);
+/// One entry of `joints:`; bodies are resolved by name only when the scene is added.
+SceneJoint parseJoint(const YAML::Node& node);
+
+}  // namespace scene_detail
+}  // namespace impulse2d

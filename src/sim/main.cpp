@@ -1,0 +1,130 @@
+// impulse2d_sim: runs a scene file headless for a number of steps, optionally writing body
+// states and contacts as CSV and the final state's hash. No ROS master is involved.
+#include <impulse2d/scene.hpp>
+#include <impulse2d/world.hpp>
+
+#include "csv_output.hpp"
+#include "options.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+namespace impulse2d {
+namespace sim {
+namespace {
+
+constexpr int kExitRunFailed = 1;
+constexpr int kExitUsage = 2;
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "impulse2d_sim: %s\n", message.c_str());
+  return code;
+}
+
+// A one-line progress report on a terminal, redrawn in place. Short runs print nothing and
+// redirected stderr is never cluttered with carriage returns.
+class Progress {
+ public:
+  Progress(uint64_t total, Clock::time_point start)
+      : total_(total), start_(start), enabled_(isatty(STDERR_FILENO) != 0) {}
+
+  void update(uint64_t step, double simulated) {
+    if (!enabled_) return;
+    const double wall = secondsSince(start_);
+    constexpr double kQuietStart = 1.0;  // s; runs shorter than this show nothing
+    constexpr double kInterval = 0.1;    // s between redraws
+    if (wall < kQuietStart || wall < lastDraw_ + kInterval) return;
+    lastDraw_ = wall;
+    shown_ = true;
+    std::fprintf(
+        stderr, "\rimpulse2d_sim: step %" PRIu64 "/%" PRIu64 " (%3.0f%%), %.2f s simulated", step,
+        total_, 100.0 * static_cast<double>(step) / static_cast<double>(total_), simulated);
+    std::fflush(stderr);
+  }
+
+  void finish() {
+    if (shown_) std::fprintf(stderr, "\r\033[K");
+  }
+
+ private:
+  uint64_t total_;
+  Clock::time_point start_;
+  bool enabled_;
+  bool shown_ = false;
+  double lastDraw_ = 0.0;
+};
+
+int run(const Options& options) {
+  Scene scene;
+  std::string error;
+  if (!loadSceneFile(options.scenePath, &scene, &error)) return fail(kExitUsage, error);
+  World world(applyOverrides(options, scene.world));
+  if (!addScene(scene, world, &error)) return fail(kExitUsage, options.scenePath + ": " + error);
+  uint64_t steps = 0;
+  if (!stepsToRun(options, world.settings().timeStep, &steps, &error)) {
+    return fail(kExitUsage, error);
+  }
+
+  CsvFile bodiesCsv, contactsCsv;
+  if (!options.csvPath.empty() && !bodiesCsv.open(options.csvPath, kBodyHeader, &error)) {
+    return fail(kExitRunFailed, error);
+  }
+  if (!options.contactsPath.empty() &&
+      !contactsCsv.open(options.contactsPath, kContactHeader, &error)) {
+    return fail(kExitRunFailed, error);
+  }
+
+  const Clock::time_point start = Clock::now();
+  Progress progress(steps, start);
+  if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, 0);
+  for (uint64_t k = 1; k <= steps; ++k) {
+    world.step();
+    if (k % options.every == 0 || k == steps) {
+      if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, k);
+      if (contactsCsv.isOpen()) contactsCsv.writeContacts(world, k);
+    }
+    progress.update(k, world.time());
+  }
+  const double wall = secondsSince(start);
+  progress.finish();
+
+  if (!bodiesCsv.close(&error) || !contactsCsv.close(&error)) {
+    return fail(kExitRunFailed, error);
+  }
+  std::printf("steps: %" PRIu64 ", simulated: %.6g s, wall: %.3f s, bodies: %zu, contacts: %zu\n",
+              steps, world.time(), wall, world.bodyCount(), world.contactCount());
+  if (options.hash) std::printf("hash: %016" PRIx64 "\n", world.hash());
+  if (std::fflush(stdout) != 0) return fail(kExitRunFailed, "cannot write to stdout");
+  return 0;
+}
+
+}  // namespace
+}  // namespace sim
+}  // namespace impulse2d
+
+int main(int argc, char** argv) {
+  using namespace impulse2d::sim;
+  Options options;
+  std::string error;
+  if (!parseOptions(argc, argv, &options, &error)) return fail(kExitUsage, error);
+  if (options.help) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    return fail(kExitRunFailed, e.what());
+  }
+}

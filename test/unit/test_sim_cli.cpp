@@ -1,0 +1,235 @@
+// impulse2d_sim as users run it: exit codes, one-line errors, the CSV layouts of the contract,
+// reproducible hashes, and a full-length pyramid run.
+#include <impulse2d/scene.hpp>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+namespace {
+
+struct SimRun {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::string shellQuoted(const std::string& arg) {
+  std::string out = "'";
+  for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "impulse2d_sim_test_" + std::to_string(getpid()) + "_" + name;
+}
+
+SimRun runSim(const std::vector<std::string>& args) {
+  static int runs = 0;
+  const std::string outPath = tempPath("stdout" + std::to_string(runs));
+  const std::string errPath = tempPath("stderr" + std::to_string(runs++));
+  std::string command = shellQuoted(IMPULSE2D_SIM_EXECUTABLE);
+  for (const std::string& arg : args) command += " " + shellQuoted(arg);
+  command += " >" + shellQuoted(outPath) + " 2>" + shellQuoted(errPath) + " </dev/null";
+  const int status = std::system(command.c_str());
+  SimRun run;
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = readFile(outPath);
+  run.err = readFile(errPath);
+  std::remove(outPath.c_str());
+  std::remove(errPath.c_str());
+  return run;
+}
+
+std::string config(const std::string& name) {
+  return std::string(IMPULSE2D_SOURCE_DIR) + "/config/" + name;
+}
+
+size_t movingBodies(const std::string& scenePath) {
+  Scene scene;
+  std::string error;
+  EXPECT_TRUE(loadSceneFile(scenePath, &scene, &error)) << error;
+  size_t count = 0;
+  for (const BodyDef& body : scene.bodies) count += body.type != BodyType::Static;
+  return count;
+}
+
+TEST(SimCli, HelpExitsZeroWithUsage) {
+  for (const char* flag : {"--help", "-h"}) {
+    const SimRun run = runSim({flag});
+    EXPECT_EQ(run.exitCode, 0);
+    EXPECT_EQ(run.out.rfind("usage: impulse2d_sim SCENE.yaml", 0), 0u) << run.out;
+    EXPECT_NE(run.out.find("--contacts FILE"), std::string::npos);
+    EXPECT_TRUE(run.err.empty()) << run.err;
+  }
+}
+
+void expectOneLineError(const SimRun& run, int exitCode, const std::string& mentions) {
+  EXPECT_EQ(run.exitCode, exitCode) << run.err;
+  const std::vector<std::string> errLines = lines(run.err);
+  ASSERT_EQ(errLines.size(), 1u) << run.err;
+  EXPECT_EQ(errLines[0].rfind("impulse2d_sim: ", 0), 0u) << run.err;
+  EXPECT_NE(errLines[0].find(mentions), std::string::npos) << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
+}
+
+TEST(SimCli, BadArgumentsExitTwoWithOneLine) {
+  const std::string pendulum = config("pendulum.yaml");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{pendulum, "--bogus"}, "--bogus"},
+      {{}, "no scene file"},
+      {{pendulum, pendulum}, "one scene file"},
+      {{pendulum, "--steps"}, "--steps needs a value"},
+      {{pendulum, "--steps", "-1"}, "--steps"},
+      {{pendulum, "--steps", "ten"}, "--steps"},
+      {{pendulum, "--steps", "5", "--duration", "1"}, "not both"},
+      {{pendulum, "--duration", "nan"}, "--duration"},
+      {{pendulum, "--duration", "inf"}, "--duration"},
+      {{pendulum, "--time-step", "0"}, "--time-step"},
+      {{pendulum, "--time-step", "1e-3x"}, "--time-step"},
+      {{pendulum, "--velocity-iterations", "0"}, "--velocity-iterations"},
+      {{pendulum, "--position-iterations=1001"}, "--position-iterations"},
+      {{pendulum, "--every", "0"}, "--every"},
+      {{pendulum, "--solver", "pgs"}, "--solver"},
+      {{pendulum, "--csv", "same.csv", "--contacts", "same.csv"}, "different files"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.second);
+    expectOneLineError(runSim(c.first), 2, c.second);
+  }
+}
+
+TEST(SimCli, MissingSceneFileExitsTwoWithOneLine) {
+  expectOneLineError(runSim({"/nonexistent/scene.yaml"}), 2, "/nonexistent/scene.yaml");
+}
+
+TEST(SimCli, BadSceneExitsTwoNamingTheKey) {
+  const std::string bad = std::string(IMPULSE2D_SOURCE_DIR) + "/test/scenes/bad/";
+  expectOneLineError(runSim({bad + "misspelled_key.yaml"}), 2,
+                     "bodies[1] 'box': shapes[0].frction");
+  expectOneLineError(runSim({bad + "unknown_body.yaml"}), 2, "joints[0] 'hinge': body_a");
+}
+
+TEST(SimCli, UnwritableOutputIsAnError) {
+  const SimRun run =
+      runSim({config("pendulum.yaml"), "--steps", "1", "--csv", "/nonexistent/x.csv"});
+  EXPECT_NE(run.exitCode, 0);
+  expectOneLineError(run, 1, "/nonexistent/x.csv");
+  if (access("/dev/full", W_OK) == 0) {  // the disk filling up is found when the file is closed
+    expectOneLineError(runSim({config("pendulum.yaml"), "--steps", "1", "--csv", "/dev/full"}), 1,
+                       "/dev/full");
+  }
+}
+
+TEST(SimCli, CsvHasTheHeaderAndOneRowPerMovingBodyPerWrittenStep) {
+  const std::string csv = tempPath("pendulum.csv");
+  const SimRun run =
+      runSim({config("pendulum.yaml"), "--steps", "10", "--every", "5", "--csv", csv});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::vector<std::string> rows = lines(readFile(csv));
+  std::remove(csv.c_str());
+  const size_t bodies = movingBodies(config("pendulum.yaml"));
+  ASSERT_GE(bodies, 1u);
+  ASSERT_EQ(rows.size(), 1 + 3 * bodies);  // steps 0, 5 and 10
+  EXPECT_EQ(rows[0], "step,time,body,x,y,angle,vx,vy,omega");
+  EXPECT_EQ(rows[1].rfind("0,0,", 0), 0u) << rows[1];
+  EXPECT_EQ(rows[1 + bodies].rfind("5,", 0), 0u) << rows[1 + bodies];
+  EXPECT_EQ(rows.back().rfind("10,", 0), 0u) << rows.back();
+  for (size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_EQ(std::count(rows[i].begin(), rows[i].end(), ','), 8) << rows[i];
+  }
+  // Full precision: the time of step 5 is printed as the double it is.
+  std::istringstream row(rows[1 + bodies]);
+  std::string step, time;
+  std::getline(row, step, ',');
+  std::getline(row, time, ',');
+  EXPECT_NEAR(std::stod(time), 0.05, 1e-12);
+  EXPECT_GE(time.size(), 17u) << time;
+}
+
+TEST(SimCli, CsvAlwaysWritesTheLastStep) {
+  const std::string csv = tempPath("every4.csv");
+  const SimRun run =
+      runSim({config("pendulum.yaml"), "--steps", "10", "--every", "4", "--csv", csv});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  std::set<std::string> steps;
+  const std::vector<std::string> rows = lines(readFile(csv));
+  std::remove(csv.c_str());
+  for (size_t i = 1; i < rows.size(); ++i) steps.insert(rows[i].substr(0, rows[i].find(',')));
+  EXPECT_EQ(steps, (std::set<std::string>{"0", "4", "8", "10"}));
+}
+
+TEST(SimCli, ContactsCsvHasTheHeaderAndWrittenSteps) {
+  const std::string csv = tempPath("contacts.csv");
+  const SimRun run =
+      runSim({config("ramp.yaml"), "--steps", "20", "--every", "10", "--contacts", csv});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::vector<std::string> rows = lines(readFile(csv));
+  std::remove(csv.c_str());
+  ASSERT_GE(rows.size(), 2u);  // the boxes rest on the ramp
+  EXPECT_EQ(rows[0], "step,body_a,body_b,x,y,nx,ny,separation,normal_impulse,tangent_impulse");
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const std::string step = rows[i].substr(0, rows[i].find(','));
+    EXPECT_TRUE(step == "10" || step == "20") << rows[i];
+    EXPECT_EQ(std::count(rows[i].begin(), rows[i].end(), ','), 9) << rows[i];
+  }
+}
+
+TEST(SimCli, PrintsOneSummaryLineAndAppliesOverrides) {
+  const SimRun run = runSim({config("pendulum.yaml"), "--duration", "1", "--time-step", "0.02"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::vector<std::string> out = lines(run.out);
+  ASSERT_EQ(out.size(), 1u) << run.out;
+  EXPECT_TRUE(std::regex_match(out[0], std::regex("steps: 50, simulated: 1 s, wall: [0-9.]+ s, "
+                                                  "bodies: 2, contacts: [0-9]+")))
+      << out[0];
+}
+
+TEST(SimCli, HashIsReproducible) {
+  const std::vector<std::string> args = {config("demo.yaml"), "--steps", "300", "--hash"};
+  const SimRun first = runSim(args);
+  const SimRun second = runSim(args);
+  ASSERT_EQ(first.exitCode, 0) << first.err;
+  ASSERT_EQ(second.exitCode, 0) << second.err;
+  const std::vector<std::string> a = lines(first.out), b = lines(second.out);
+  ASSERT_EQ(a.size(), 2u) << first.out;
+  ASSERT_EQ(b.size(), 2u) << second.out;
+  EXPECT_TRUE(std::regex_match(a[1], std::regex("hash: [0-9a-f]{16}"))) << a[1];
+  EXPECT_EQ(a[1], b[1]);
+}
+
+TEST(SimCli, PyramidRunsForTenSimulatedSeconds) {
+  const SimRun run = runSim({config("pyramid.yaml"), "--duration", "10", "--hash"});
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.out.rfind("steps: 1000, simulated: 10 s,", 0), 0u) << run.out;
+  EXPECT_NE(run.out.find("bodies: 211,"), std::string::npos) << run.out;
+  EXPECT_TRUE(run.err.empty()) << run.err;  // no progress output when stderr is not a terminal
+}
+
+}  // namespace
+}  // namespace impulse2d
