@@ -13,7 +13,7 @@ if(IMPULSE2D_CORE_ONLY)
   gtest_discover_tests(impulse2d_unit_tests DISCOVERY_TIMEOUT 60)
 else()
   catkin_add_gtest(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES} TIMEOUT 600)
-  target_link_libraries(impulse2d_unit_tests impulse2d_scene)
+  target_link_libraries(impulse2d_unit_tests impulse2d_scene ${GTEST_MAIN_LIBRARIES})
 endif()
 target_include_directories(impulse2d_unit_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/core
   ${PROJECT_SOURCE_DIR}/src/scene)
