@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -205,9 +204,16 @@ TEST(SimCli, PrintsOneSummaryLineAndAppliesOverrides) {
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const std::vector<std::string> out = lines(run.out);
   ASSERT_EQ(out.size(), 1u) << run.out;
-  EXPECT_TRUE(std::regex_match(out[0], std::regex("steps: 50, simulated: 1 s, wall: [0-9.]+ s, "
-                                                  "bodies: 2, contacts: [0-9]+")))
+  // "steps: 50, simulated: 1 s, wall: <seconds> s, bodies: 2, contacts: <count>"
+  double wall = -1.0;
+  int contacts = -1;
+  char tail = 0;
+  EXPECT_EQ(std::sscanf(out[0].c_str(), "steps: 50, simulated: 1 s, wall: %lf s, bodies: 2, contacts: %d%c",
+                        &wall, &contacts, &tail),
+            2)
       << out[0];
+  EXPECT_GE(wall, 0.0) << out[0];
+  EXPECT_GE(contacts, 0) << out[0];
 }
 
 TEST(SimCli, HashIsReproducible) {
@@ -219,7 +225,9 @@ TEST(SimCli, HashIsReproducible) {
   const std::vector<std::string> a = lines(first.out), b = lines(second.out);
   ASSERT_EQ(a.size(), 2u) << first.out;
   ASSERT_EQ(b.size(), 2u) << second.out;
-  EXPECT_TRUE(std::regex_match(a[1], std::regex("hash: [0-9a-f]{16}"))) << a[1];
+  ASSERT_EQ(a[1].size(), 6u + 16u) << a[1];
+  EXPECT_EQ(a[1].substr(0, 6), "hash: ");
+  EXPECT_EQ(a[1].find_first_not_of("0123456789abcdef", 6), std::string::npos) << a[1];
   EXPECT_EQ(a[1], b[1]);
 }
 
