@@ -44,11 +44,12 @@ struct WorldDef {
   double timeStep = 0.01;           ///< s, the fixed step of World::step()
   int velocityIterations = 8;
   int positionIterations = 3;
-  SolverType solver = SolverType::Baumgarte;
+  SolverType solver = SolverType::NonlinearGaussSeidel;
   double baumgarte = 0.2;             ///< fraction of the penetration removed per step
   double linearSlop = 0.005;          ///< m, penetration left alone so contacts persist
   double speculativeDistance = 0.02;  ///< m, contacts are kept this far before touching
   double restitutionThreshold = 1.0;  ///< m/s, slower impacts do not bounce
+  double maxPushVelocity = 3.0;       ///< m/s, the fastest Baumgarte pushes overlaps apart
   bool warmStarting = true;
   bool enableSleep = true;              ///< still islands stop costing anything
   double timeToSleep = 0.5;             ///< s an island must be still before it sleeps

@@ -109,7 +109,9 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& b
         // Speculative: not touching yet, so the bodies may close the gap within this step.
         p.targetVelocity = -mp.separation / dt;
       } else if (baumgarte) {
-        p.targetVelocity = def.baumgarte / dt * std::max(0.0, -mp.separation - def.linearSlop);
+        // Capped, so that bodies spawned deep inside each other separate instead of exploding.
+        p.targetVelocity = std::min(
+            def.baumgarte / dt * std::max(0.0, -mp.separation - def.linearSlop), def.maxPushVelocity);
       } else {
         p.targetVelocity = 0.0;  // the position pass removes the overlap without adding momentum
       }

@@ -49,6 +49,16 @@ void WorldImpl::updateSleep(double dt) {
                        body.angularVelocity * body.angularVelocity <= angTol2;
     body.sleepTime = still ? body.sleepTime + dt : 0.0;
   }
+  // The NGS pass moves overlapping bodies apart without giving them velocity: a body still being
+  // pushed out of an overlap is not at rest.
+  for (const Contact& c : contacts) {
+    for (int i = 0; i < c.manifold.pointCount; ++i) {
+      if (c.manifold.points[i].separation < -2.0 * def.linearSlop) {
+        bodies.items[c.bodyA].sleepTime = 0.0;
+        bodies.items[c.bodyB].sleepTime = 0.0;
+      }
+    }
+  }
 
   // Flood fill from each awake dynamic body. A sleeping body reached from an awake one is woken:
   // something touches it.

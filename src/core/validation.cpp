@@ -90,6 +90,9 @@ std::string World::validate(const WorldDef& def) {
   if (!finiteNonNegative(def.restitutionThreshold)) {
     return "restitution_threshold: must be finite and >= 0";
   }
+  if (!finiteNonNegative(def.maxPushVelocity)) {
+    return "max_push_velocity: must be finite and >= 0";
+  }
   if (!finiteNonNegative(def.timeToSleep)) return "time_to_sleep: must be finite and >= 0";
   if (!finiteNonNegative(def.sleepLinearTolerance)) {
     return "sleep_linear_tolerance: must be finite and >= 0";

@@ -10,7 +10,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   const Fields f(node, "the world settings",
                  {"gravity", "time_step", "velocity_iterations", "position_iterations", "plane",
                   "frame_id", "solver", "baumgarte", "linear_slop", "speculative_distance",
-                  "restitution_threshold", "warm_starting", "enable_sleep", "time_to_sleep",
+                  "restitution_threshold", "max_push_velocity", "warm_starting", "enable_sleep", "time_to_sleep",
                   "sleep_linear_tolerance", "sleep_angular_tolerance"});
   WorldDef& w = scene->world;
   w.gravity = f.vec2("gravity", w.gravity);
@@ -31,6 +31,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   w.linearSlop = f.number("linear_slop", w.linearSlop);
   w.speculativeDistance = f.number("speculative_distance", w.speculativeDistance);
   w.restitutionThreshold = f.number("restitution_threshold", w.restitutionThreshold);
+  w.maxPushVelocity = f.number("max_push_velocity", w.maxPushVelocity);
   w.warmStarting = f.boolean("warm_starting", w.warmStarting);
   w.enableSleep = f.boolean("enable_sleep", w.enableSleep);
   w.timeToSleep = f.number("time_to_sleep", w.timeToSleep);
