@@ -1,7 +1,60 @@
 # ROS executables, plugins, rostests and install rules (after core.cmake).
+
+# ROS headers are not ours to fix: keep their warnings out of -Werror.
+include_directories(SYSTEM ${catkin_INCLUDE_DIRS} ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+
+# The world node's logic, shared by impulse2d_node and the nodelet.
+add_library(impulse2d_ros STATIC
+  src/ros/sim_world.cpp
+  src/ros/conversions.cpp
+  src/ros/scene_param.cpp
+  src/ros/markers.cpp
+  src/ros/world_node.cpp
+  src/ros/world_publish.cpp
+  src/ros/world_services.cpp)
+target_link_libraries(impulse2d_ros PUBLIC impulse2d_scene ${catkin_LIBRARIES})
+set_target_properties(impulse2d_ros PROPERTIES POSITION_INDEPENDENT_CODE ON)
+add_dependencies(impulse2d_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
+
+# The nodelet plugin impulse2d/WorldNodelet (nodelet_plugins.xml names lib/libimpulse2d_nodelet).
+add_library(impulse2d_nodelet SHARED src/ros/world_nodelet.cpp)
+target_link_libraries(impulse2d_nodelet PRIVATE impulse2d_ros)
+
+add_executable(impulse2d_node src/ros/node_main.cpp)
+target_link_libraries(impulse2d_node PRIVATE impulse2d_ros)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  find_package(roslaunch REQUIRED)
+
+  # Conversions and the ~scene parameter, without a master.
+  catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp)
+  target_link_libraries(impulse2d_ros_unit_tests impulse2d_ros GTest::gtest_main)
+
+  # One gtest node, run once against impulse2d_node and once against the nodelet.
+  add_rostest_gtest(impulse2d_world_tests test/ros/world_node.test
+    test/ros/world_test_main.cpp
+    test/ros/world_test_util.cpp
+    test/ros/services_test.cpp
+    test/ros/topics_test.cpp)
+  target_link_libraries(impulse2d_world_tests ${catkin_LIBRARIES})
+  add_dependencies(impulse2d_world_tests impulse2d_node impulse2d_nodelet
+    ${PROJECT_NAME}_generate_messages_cpp)
+  add_rostest(test/ros/world_nodelet.test DEPENDENCIES impulse2d_world_tests)
+
+  roslaunch_add_file_check(launch/world.launch)
+  roslaunch_add_file_check(launch/demo.launch rviz:=false)
+endif()
+
 install(TARGETS impulse2d_core impulse2d_scene impulse2d_sim
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(TARGETS impulse2d_node impulse2d_nodelet
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY include/impulse2d/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
-install(DIRECTORY config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY config launch DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

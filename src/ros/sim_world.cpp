@@ -1,0 +1,298 @@
+// The engine side of the ROS node. No ROS header may appear here (see sim_world.hpp).
+#include "sim_world.hpp"
+
+#include <impulse2d/scene.hpp>
+#include <impulse2d/world.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+namespace bridge {
+namespace {
+
+std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+// A relative tolerance so that a duration of exactly k time steps gives k steps, not k + 1.
+uint64_t stepsFor(double duration, double timeStep) {
+  if (duration <= 0.0) return 1;
+  const double steps = std::ceil(duration / timeStep * (1.0 - 1e-9));
+  return static_cast<uint64_t>(std::max(1.0, steps));
+}
+
+}  // namespace
+
+SimWorld::SimWorld() : world_(std::make_unique<World>()) {}
+
+SimWorld::~SimWorld() = default;
+
+bool SimWorld::loadStartScene(const std::string& yamlText, std::string* error) {
+  Scene scene;
+  if (!parseScene(yamlText, &scene, error)) {
+    startYaml_.clear();
+    restoreStart();
+    return false;
+  }
+  World candidate(scene.world);
+  if (!impulse2d::addScene(scene, candidate, error)) {
+    startYaml_.clear();
+    restoreStart();
+    return false;
+  }
+  startYaml_ = yamlText;
+  restoreStart();
+  return true;
+}
+
+void SimWorld::restoreStart() {
+  world_ = std::make_unique<World>();
+  frameId_ = "world";
+  plane_ = "xz";
+  wrenches_.clear();
+  ++staticVersion_;
+  if (startYaml_.empty()) return;
+  // The start scene was checked when it was loaded, so this cannot fail.
+  Scene scene;
+  std::string error;
+  if (!parseScene(startYaml_, &scene, &error)) return;
+  world_ = std::make_unique<World>(scene.world);
+  frameId_ = scene.frameId;
+  plane_ = scene.plane;
+  impulse2d::addScene(scene, *world_, &error);
+}
+
+void SimWorld::reset() { restoreStart(); }
+
+bool SimWorld::addScene(const std::string& yamlText, std::string* error) {
+  Scene scene;
+  if (!parseScene(yamlText, &scene, error)) return false;
+  if (!impulse2d::addScene(scene, *world_, error)) return false;
+  ++staticVersion_;
+  return true;
+}
+
+bool SimWorld::spawnBody(const BodyDef& def, std::string* error) {
+  if (world_->findBody(def.name).valid()) {
+    *error = "body.name: a body named " + quoted(def.name) + " already exists";
+    return false;
+  }
+  const std::string why = World::validate(def);
+  if (!why.empty()) {
+    *error = "body." + why;
+    return false;
+  }
+  std::string createError;
+  if (!world_->createBody(def, &createError).valid()) {
+    *error = "body." + createError;
+    return false;
+  }
+  if (def.type == BodyType::Static) ++staticVersion_;
+  return true;
+}
+
+bool SimWorld::deleteBody(const std::string& name, std::string* error) {
+  const BodyId id = world_->findBody(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
+    return false;
+  }
+  if (world_->body(id).type == BodyType::Static) ++staticVersion_;
+  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
+                                 [&](const Wrench& w) { return w.body == id; }),
+                  wrenches_.end());
+  world_->destroyBody(id);
+  return true;
+}
+
+bool SimWorld::createJoint(const JointDef& def, const std::string& bodyA, const std::string& bodyB,
+                           std::string* error) {
+  if (world_->findJoint(def.name).valid()) {
+    *error = "joint.name: a joint named " + quoted(def.name) + " already exists";
+    return false;
+  }
+  JointDef resolved = def;
+  resolved.bodyA = world_->findBody(bodyA);
+  resolved.bodyB = world_->findBody(bodyB);
+  if (!resolved.bodyA.valid()) {
+    *error = "joint.body_a: no body named " + quoted(bodyA);
+    return false;
+  }
+  if (!resolved.bodyB.valid()) {
+    *error = "joint.body_b: no body named " + quoted(bodyB);
+    return false;
+  }
+  std::string why = world_->validate(resolved);
+  if (why.empty() && !world_->createJoint(resolved, &why).valid() && why.empty()) {
+    why = "the world refused the joint";
+  }
+  if (!why.empty()) {
+    *error = "joint." + why;
+    return false;
+  }
+  return true;
+}
+
+bool SimWorld::deleteJoint(const std::string& name, std::string* error) {
+  const JointId id = world_->findJoint(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no joint named " + quoted(name);
+    return false;
+  }
+  world_->destroyJoint(id);
+  return true;
+}
+
+bool SimWorld::applyWrench(const std::string& body, const Vec2& force, double torque,
+                           const Vec2& point, double duration, std::string* error) {
+  const BodyId id = world_->findBody(body);
+  if (body.empty() || !id.valid()) {
+    *error = body.empty() ? "body: must not be empty" : "body: no body named " + quoted(body);
+    return false;
+  }
+  if (world_->body(id).type != BodyType::Dynamic) {
+    *error = "body: " + quoted(body) + " is not dynamic, so forces do not move it";
+    return false;
+  }
+  Wrench wrench;
+  wrench.body = id;
+  wrench.force = force;
+  wrench.torque = torque;
+  wrench.localPoint = world_->body(id).xf.applyInverse(point);
+  wrench.stepsLeft = stepsFor(duration, timeStep());
+  wrenches_.push_back(wrench);
+  return true;
+}
+
+bool SimWorld::setBodyState(const std::string& name, const Vec2& position, double angle,
+                            const Vec2& linearVelocity, double angularVelocity,
+                            std::string* error) {
+  const BodyId id = world_->findBody(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
+    return false;
+  }
+  const bool isStatic = world_->body(id).type == BodyType::Static;
+  if (isStatic && (linearVelocity != Vec2::Zero() || angularVelocity != 0.0)) {
+    *error = "twist: " + quoted(name) + " is static and cannot move";
+    return false;
+  }
+  world_->setTransform(id, position, angle);
+  if (!isStatic) world_->setVelocity(id, linearVelocity, angularVelocity);
+  if (isStatic) ++staticVersion_;
+  return true;
+}
+
+bool SimWorld::getBodyState(const std::string& name, BodySnapshot* out, std::string* error) const {
+  const BodyId id = world_->findBody(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
+    return false;
+  }
+  const Body& body = world_->body(id);
+  out->index = id.index;
+  out->name = body.name;
+  out->type = body.type;
+  out->position = body.xf.p;
+  out->angle = body.angle;
+  out->linearVelocity = body.linearVelocity;
+  out->angularVelocity = body.angularVelocity;
+  out->awake = body.awake;
+  return true;
+}
+
+void SimWorld::step() {
+  for (Wrench& w : wrenches_) {
+    if (!world_->isValid(w.body)) {
+      w.stepsLeft = 0;
+      continue;
+    }
+    const Vec2 point = world_->body(w.body).xf.apply(w.localPoint);
+    world_->applyForce(w.body, w.force, point);
+    if (w.torque != 0.0) world_->applyTorque(w.body, w.torque);
+    --w.stepsLeft;
+  }
+  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
+                                 [](const Wrench& w) { return w.stepsLeft == 0; }),
+                  wrenches_.end());
+  world_->step();
+  ++steps_;
+  simTimeNs_ += static_cast<int64_t>(std::llround(timeStep() * 1e9));
+}
+
+double SimWorld::timeStep() const { return world_->settings().timeStep; }
+
+size_t SimWorld::bodyCount() const { return world_->bodyCount(); }
+
+size_t SimWorld::contactCount() const { return world_->contactCount(); }
+
+std::vector<BodySnapshot> SimWorld::bodies(bool withShapes) const {
+  std::vector<BodySnapshot> out;
+  const std::vector<BodyId> ids = world_->bodies();
+  out.reserve(ids.size());
+  std::string unused;
+  for (const BodyId id : ids) {
+    const Body& body = world_->body(id);
+    BodySnapshot snap;
+    snap.index = id.index;
+    snap.name = body.name;
+    snap.type = body.type;
+    snap.position = body.xf.p;
+    snap.angle = body.angle;
+    snap.linearVelocity = body.linearVelocity;
+    snap.angularVelocity = body.angularVelocity;
+    snap.awake = body.awake;
+    if (withShapes) {
+      for (const Shape& shape : body.shapes) {
+        ShapeOutline outline;
+        outline.circle = shape.type == ShapeType::Circle;
+        if (outline.circle) {
+          outline.center = shape.circle.center;
+          outline.radius = shape.circle.radius;
+        } else {
+          outline.vertices.assign(shape.polygon.vertices,
+                                  shape.polygon.vertices + shape.polygon.count);
+        }
+        snap.shapes.push_back(std::move(outline));
+      }
+    }
+    out.push_back(std::move(snap));
+  }
+  return out;
+}
+
+std::vector<ContactSnapshot> SimWorld::contacts() const {
+  std::vector<ContactSnapshot> out;
+  for (const ContactInfo& c : world_->contacts()) {
+    ContactSnapshot snap;
+    snap.bodyA = world_->body(c.bodyA).name;
+    snap.bodyB = world_->body(c.bodyB).name;
+    snap.point = c.point;
+    snap.normal = c.normal;
+    snap.separation = c.separation;
+    snap.normalImpulse = c.normalImpulse;
+    snap.tangentImpulse = c.tangentImpulse;
+    out.push_back(std::move(snap));
+  }
+  return out;
+}
+
+std::vector<JointSnapshot> SimWorld::joints() const {
+  std::vector<JointSnapshot> out;
+  for (const JointId id : world_->joints()) {
+    const JointDef& def = world_->jointDef(id);
+    const JointState state = world_->jointState(id);
+    JointSnapshot snap;
+    snap.index = id.index;
+    snap.name = def.name;
+    snap.type = def.type;
+    snap.originA = world_->body(def.bodyA).xf.p;
+    snap.originB = world_->body(def.bodyB).xf.p;
+    snap.anchorA = state.anchorA;
+    snap.anchorB = state.anchorB;
+    out.push_back(std::move(snap));
+  }
+  return out;
+}
+
+}  // namespace bridge
+}  // namespace impulse2d

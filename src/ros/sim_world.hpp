@@ -1,0 +1,135 @@
+// The engine side of the ROS node: one World with its start scene, timed wrenches and plain
+// snapshots for publishing.
+//
+// This header deliberately includes only defs.hpp. The generated messages impulse2d/Body.h and
+// impulse2d/Shape.h declare impulse2d::Body and impulse2d::Shape, which clash with the engine's
+// structs of the same names in body.hpp and shape.hpp, so no translation unit may include both.
+// sim_world.cpp sees the engine; everything that sees messages sees only this header.
+#pragma once
+
+#include <impulse2d/defs.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+
+class World;
+
+namespace bridge {
+
+/// A shape's outline in its body's frame: a circle, or a convex polygon counter-clockwise.
+struct ShapeOutline {
+  bool circle = false;
+  Vec2 center = Vec2::Zero();
+  double radius = 0.0;
+  std::vector<Vec2> vertices;
+};
+
+struct BodySnapshot {
+  int index = -1;  ///< the body's slot: stable while it lives, used as a marker id
+  std::string name;
+  BodyType type = BodyType::Dynamic;
+  Vec2 position = Vec2::Zero();  ///< body origin in the world
+  double angle = 0.0;            ///< rad, continuous (not wrapped)
+  Vec2 linearVelocity = Vec2::Zero();
+  double angularVelocity = 0.0;
+  bool awake = true;
+  std::vector<ShapeOutline> shapes;  ///< filled only when asked for
+};
+
+struct ContactSnapshot {
+  std::string bodyA, bodyB;
+  Vec2 point = Vec2::Zero();
+  Vec2 normal = Vec2::Zero();  ///< from body A to body B
+  double separation = 0.0;
+  double normalImpulse = 0.0;
+  double tangentImpulse = 0.0;
+};
+
+struct JointSnapshot {
+  int index = -1;
+  std::string name;
+  JointType type = JointType::Revolute;
+  Vec2 originA = Vec2::Zero();  ///< body A's origin
+  Vec2 originB = Vec2::Zero();
+  Vec2 anchorA = Vec2::Zero();  ///< the anchor as carried by body A
+  Vec2 anchorB = Vec2::Zero();
+};
+
+/// Not thread-safe: the node serialises every call with its own mutex.
+/// Every mutating call either succeeds or leaves the world unchanged and sets `error` to one
+/// line naming the request field.
+class SimWorld {
+ public:
+  SimWorld();
+  ~SimWorld();
+  SimWorld(const SimWorld&) = delete;
+  SimWorld& operator=(const SimWorld&) = delete;
+
+  /// Replaces everything by the scene and remembers it for reset(). On a bad scene the world is
+  /// left empty with default settings, and reset() restores that empty world.
+  bool loadStartScene(const std::string& yamlText, std::string* error);
+  /// Back to the start scene: bodies, joints and settings; pending wrenches are dropped.
+  /// The step count (simulated time) keeps running, so stamps never go backwards.
+  void reset();
+  /// Adds the scene's bodies and joints (all or nothing); its `world:` settings are not applied.
+  bool addScene(const std::string& yamlText, std::string* error);
+
+  bool spawnBody(const BodyDef& def, std::string* error);
+  bool deleteBody(const std::string& name, std::string* error);
+  /// `def.bodyA` and `def.bodyB` are ignored; the bodies are named.
+  bool createJoint(const JointDef& def, const std::string& bodyA, const std::string& bodyB,
+                   std::string* error);
+  bool deleteJoint(const std::string& name, std::string* error);
+  /// `force` (N) at the world point `point`, which then moves with the body, plus `torque`
+  /// (N m), for ceil(duration / time_step) steps; duration 0 means one step.
+  bool applyWrench(const std::string& body, const Vec2& force, double torque, const Vec2& point,
+                   double duration, std::string* error);
+  bool setBodyState(const std::string& name, const Vec2& position, double angle,
+                    const Vec2& linearVelocity, double angularVelocity, std::string* error);
+  bool getBodyState(const std::string& name, BodySnapshot* out, std::string* error) const;
+
+  /// One fixed step, with the wrenches that are due.
+  void step();
+  uint64_t stepCount() const { return steps_; }
+  /// Simulated time as steps * time_step summed in nanoseconds, so it never drifts.
+  int64_t simTimeNs() const { return simTimeNs_; }
+  double timeStep() const;
+
+  const std::string& frameId() const { return frameId_; }
+  const std::string& plane() const { return plane_; }
+  /// Changes whenever static bodies may have been added, moved or removed.
+  uint64_t staticVersion() const { return staticVersion_; }
+
+  size_t bodyCount() const;
+  size_t contactCount() const;
+  std::vector<BodySnapshot> bodies(bool withShapes) const;
+  std::vector<ContactSnapshot> contacts() const;
+  std::vector<JointSnapshot> joints() const;
+
+ private:
+  /// A wrench held for a number of steps; the point is kept in the body frame.
+  struct Wrench {
+    BodyId body;
+    Vec2 force = Vec2::Zero();
+    Vec2 localPoint = Vec2::Zero();
+    double torque = 0.0;
+    uint64_t stepsLeft = 0;
+  };
+  void restoreStart();
+
+  std::unique_ptr<World> world_;
+  std::string startYaml_;  ///< empty when the start scene was missing or bad
+  std::string frameId_ = "world";
+  std::string plane_ = "xz";
+  std::vector<Wrench> wrenches_;
+  uint64_t steps_ = 0;
+  int64_t simTimeNs_ = 0;
+  uint64_t staticVersion_ = 0;
+};
+
+}  // namespace bridge
+}  // namespace impulse2d

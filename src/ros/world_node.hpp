@@ -1,0 +1,121 @@
+// The ROS face of one world: parameters, the stepping timer, publishers, diagnostics and the
+// private services. impulse2d_node and the impulse2d/WorldNodelet both run exactly this class.
+#pragma once
+
+#include "sim_world.hpp"
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <impulse2d/ApplyWrench.h>
+#include <impulse2d/CreateJoint.h>
+#include <impulse2d/DeleteBody.h>
+#include <impulse2d/DeleteJoint.h>
+#include <impulse2d/GetBodyState.h>
+#include <impulse2d/LoadScene.h>
+#include <impulse2d/SetBodyState.h>
+#include <impulse2d/SpawnBody.h>
+#include <impulse2d/Step.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+namespace bridge {
+
+class WorldNode {
+ public:
+  /// `nh` is for the global topics (/tf, /tf_static, /clock, /diagnostics), `pnh` the private
+  /// namespace for the parameters, services and ~contacts / ~markers; `name` is used in logs.
+  /// Callbacks may run on several threads at once: every world access takes one mutex.
+  WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, const std::string& name);
+  ~WorldNode();
+  WorldNode(const WorldNode&) = delete;
+  WorldNode& operator=(const WorldNode&) = delete;
+
+ private:
+  /// Holds the world mutex. While a caller waits for it, the free-running step loop yields.
+  class Lock {
+   public:
+    explicit Lock(WorldNode& node);
+    ~Lock();
+    Lock(const Lock&) = delete;
+    Lock& operator=(const Lock&) = delete;
+
+   private:
+    WorldNode& node_;
+  };
+
+  void loadStartScene();
+  void readParams();
+  void advertise();
+  void advertiseServices();  // world_services.cpp
+
+  // Stepping (world_node.cpp).
+  void onStepTimer(const ros::WallTimerEvent& event);
+  void stepLocked();  ///< one step plus its statistics; the caller holds the Lock
+  void restartSchedule();
+  ros::Time stampFor(int64_t simTimeNs) const;
+  void publishClock(int64_t simTimeNs);
+
+  // Publishing (world_publish.cpp).
+  void onPublishTimer(const ros::WallTimerEvent& event);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  // Services (world_services.cpp).
+  bool spawnBody(SpawnBody::Request& req, SpawnBody::Response& res);
+  bool deleteBody(DeleteBody::Request& req, DeleteBody::Response& res);
+  bool createJoint(CreateJoint::Request& req, CreateJoint::Response& res);
+  bool deleteJoint(DeleteJoint::Request& req, DeleteJoint::Response& res);
+  bool loadScene(LoadScene::Request& req, LoadScene::Response& res);
+  bool applyWrench(ApplyWrench::Request& req, ApplyWrench::Response& res);
+  bool getBodyState(GetBodyState::Request& req, GetBodyState::Response& res);
+  bool setBodyState(SetBodyState::Request& req, SetBodyState::Response& res);
+  bool step(Step::Request& req, Step::Response& res);
+  bool pause(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+  bool unpause(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+  bool reset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+
+  ros::NodeHandle nh_, pnh_;
+  std::string name_;
+
+  std::mutex mutex_;
+  std::atomic<int> waiters_{0};
+
+  // Guarded by mutex_.
+  SimWorld sim_;
+  bool paused_ = false;
+  ros::WallTime scheduleStart_;  ///< when the timer's step count was last restarted
+  uint64_t scheduledSteps_ = 0;  ///< steps the timer made since scheduleStart_
+  ros::WallTime statsStart_;     ///< diagnostics window
+  int64_t statsSimStartNs_ = 0;
+  uint64_t statsSteps_ = 0;
+  double statsStepSeconds_ = 0.0;
+
+  // /clock never goes back, even when a timer tick and a step call publish out of order. It is
+  // also sent at ~publish_rate while paused, so sim-time nodes see the clock (as gazebo does).
+  std::mutex clockMutex_;
+  int64_t lastClockNs_ = -1;
+
+  // Set once by readParams().
+  double rate_ = 100.0;  ///< steps per wall second; 0: as fast as possible
+  double publishRate_ = 30.0;
+  bool publishClock_ = false;
+
+  // Only the publish timer touches these (a timer's callbacks never overlap).
+  uint64_t publishedStaticVersion_ = 0;
+  bool staticPublished_ = false;
+  bool tfPublished_ = false;
+  ros::Time lastTfStamp_;
+
+  ros::Publisher tfPub_, tfStaticPub_, clockPub_, contactsPub_, markersPub_;
+  std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
+  std::vector<ros::ServiceServer> services_;
+  ros::WallTimer stepTimer_, publishTimer_;
+};
+
+}  // namespace bridge
+}  // namespace impulse2d

@@ -1,0 +1,120 @@
+// WorldNode: what the publish timer sends (tf, tf_static, ~contacts, ~markers) and diagnostics.
+#include "conversions.hpp"
+#include "markers.hpp"
+#include "world_node.hpp"
+
+#include <impulse2d/ContactArray.h>
+#include <tf2_msgs/TFMessage.h>
+
+namespace impulse2d {
+namespace bridge {
+namespace {
+
+geometry_msgs::TransformStamped bodyTransform(Plane plane, const std::string& frameId,
+                                              const ros::Time& stamp, const BodySnapshot& body) {
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = frameId;
+  t.header.stamp = stamp;
+  t.child_frame_id = body.name;
+  t.transform = toTransform(plane, body.position, body.angle);
+  return t;
+}
+
+}  // namespace
+
+void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
+  // Contacts and markers cost something to build, so only while someone listens.
+  const bool wantContacts = contactsPub_.getNumSubscribers() > 0;
+  const bool wantMarkers = markersPub_.getNumSubscribers() > 0;
+
+  MarkerInput scene;
+  std::vector<ContactSnapshot> contacts;
+  uint64_t staticVersion = 0;
+  int64_t simTimeNs = 0;
+  {
+    Lock lock(*this);
+    simTimeNs = sim_.simTimeNs();
+    scene.stamp = stampFor(simTimeNs);
+    scene.frameId = sim_.frameId();
+    if (!parsePlane(sim_.plane(), &scene.plane)) scene.plane = Plane::XZ;
+    scene.timeStep = sim_.timeStep();
+    scene.bodies = sim_.bodies(wantMarkers);
+    if (wantContacts || wantMarkers) contacts = sim_.contacts();
+    if (wantMarkers) scene.joints = sim_.joints();
+    staticVersion = sim_.staticVersion();
+  }
+
+  if (publishClock_) publishClock(simTimeNs);
+
+  // On simulated time a paused world keeps its stamp; tf2 would warn about repeated data.
+  if (!tfPublished_ || scene.stamp != lastTfStamp_) {
+    tf2_msgs::TFMessage tf;
+    for (const BodySnapshot& body : scene.bodies) {
+      if (body.type == BodyType::Static || body.name.empty()) continue;
+      tf.transforms.push_back(bodyTransform(scene.plane, scene.frameId, scene.stamp, body));
+    }
+    if (!tf.transforms.empty()) tfPub_.publish(tf);
+    tfPublished_ = true;
+    lastTfStamp_ = scene.stamp;
+  }
+
+  // Latched, and always the full set, so that a removed static body leaves it.
+  if (!staticPublished_ || staticVersion != publishedStaticVersion_) {
+    tf2_msgs::TFMessage tf;
+    for (const BodySnapshot& body : scene.bodies) {
+      if (body.type != BodyType::Static || body.name.empty()) continue;
+      tf.transforms.push_back(bodyTransform(scene.plane, scene.frameId, scene.stamp, body));
+    }
+    tfStaticPub_.publish(tf);
+    staticPublished_ = true;
+    publishedStaticVersion_ = staticVersion;
+  }
+
+  if (wantContacts) {
+    impulse2d::ContactArray msg;
+    msg.header.frame_id = scene.frameId;
+    msg.header.stamp = scene.stamp;
+    msg.contacts.reserve(contacts.size());
+    for (const ContactSnapshot& c : contacts) msg.contacts.push_back(toContactMsg(c));
+    contactsPub_.publish(msg);
+  }
+  if (wantMarkers) {
+    scene.contacts = std::move(contacts);
+    markersPub_.publish(buildMarkers(scene));
+  }
+  diagnostics_->update();
+}
+
+void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  Lock lock(*this);
+  const ros::WallTime now = ros::WallTime::now();
+  const double wall = (now - statsStart_).toSec();
+  const double sim = 1e-9 * static_cast<double>(sim_.simTimeNs() - statsSimStartNs_);
+  const double realTimeFactor = wall > 0.0 ? sim / wall : 0.0;
+  const double meanStep = statsSteps_ > 0 ? statsStepSeconds_ / statsSteps_ : 0.0;
+  // Running behind the requested rate by more than 10% is worth a warning.
+  const double target = rate_ * sim_.timeStep();
+  if (paused_) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
+  } else if (rate_ > 0.0 && realTimeFactor < 0.9 * target) {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "real-time factor %.3f below the requested %.3f", realTimeFactor, target);
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
+  }
+  status.add("real-time factor", realTimeFactor);
+  status.add("mean step time (s)", meanStep);
+  status.add("steps in window", statsSteps_);
+  status.add("total steps", sim_.stepCount());
+  status.add("simulated time (s)", 1e-9 * static_cast<double>(sim_.simTimeNs()));
+  status.add("bodies", sim_.bodyCount());
+  status.add("contacts", sim_.contactCount());
+  status.add("requested rate (steps/s)", rate_);
+  statsStart_ = now;
+  statsSimStartNs_ = sim_.simTimeNs();
+  statsSteps_ = 0;
+  statsStepSeconds_ = 0.0;
+}
+
+}  // namespace bridge
+}  // namespace impulse2d
