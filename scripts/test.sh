@@ -23,12 +23,15 @@ step() {  # step NAME COMMAND...: runs a stage, counts it as a failure when it f
 }
 
 step "install dependencies" "$REPO/scripts/install_deps.sh" || { echo "0 passed, 1 failed"; exit 1; }
-rm -rf "$RESULTS"
-mkdir -p "$RESULTS"
 if step "build (catkin)" "$REPO/scripts/build.sh" --clean >/dev/null; then
   # run_tests exits 0 even when tests fail: the XML results below are what counts.
   step "unit tests and rostests" catkin_make -C "$WS" run_tests -DPYTHON_EXECUTABLE=/usr/bin/python3 -j2 >&2
-  cp -r "$WS/build/test_results" "$RESULTS/catkin" 2>/dev/null || true
+fi
+rm -rf "$RESULTS"  # after the clean build, which empties the workspace
+mkdir -p "$RESULTS"
+if ! cp -r "$WS/build/test_results" "$RESULTS/catkin" 2>/dev/null; then
+  echo "=== no catkin test results" >&2
+  failed_steps=$((failed_steps + 1))
 fi
 
 # Sanitizers: the core alone, built without catkin, so it also proves the core is ROS-free.
