@@ -15,10 +15,10 @@ struct Body {
   std::string name;
   BodyType type = BodyType::Dynamic;
 
-  Transform xf;                      ///< body origin in the world
-  double angle = 0.0;                ///< rad, continuous (not wrapped), xf.q == Rot(angle)
-  Vec2 localCenter = Vec2::Zero();   ///< centre of mass in the body frame
-  Vec2 center = Vec2::Zero();        ///< centre of mass in the world
+  Transform xf;                        ///< body origin in the world
+  double angle = 0.0;                  ///< rad, continuous (not wrapped), xf.q == Rot(angle)
+  Vec2 localCenter = Vec2::Zero();     ///< centre of mass in the body frame
+  Vec2 center = Vec2::Zero();          ///< centre of mass in the world
   Vec2 linearVelocity = Vec2::Zero();  ///< m/s of the centre of mass
   double angularVelocity = 0.0;        ///< rad/s
 
@@ -32,8 +32,8 @@ struct Body {
   double maxExtent = 0.0;  ///< m, farthest shape point from the centre of mass
   double minExtent = 0.0;  ///< m, the thinnest shape's inner radius: moving less cannot skip it
 
-  std::vector<Shape> shapes;   ///< in the body frame (offsets already applied)
-  std::vector<int> proxies;    ///< broad-phase proxy of each shape
+  std::vector<Shape> shapes;  ///< in the body frame (offsets already applied)
+  std::vector<int> proxies;   ///< broad-phase proxy of each shape
 
   bool awake = true;
   double sleepTime = 0.0;  ///< s the body has been still

@@ -51,22 +51,22 @@ struct WorldDef {
   double restitutionThreshold = 1.0;  ///< m/s, slower impacts do not bounce
   double maxPushVelocity = 3.0;       ///< m/s, the fastest Baumgarte pushes overlaps apart
   bool warmStarting = true;
-  bool enableSleep = true;              ///< still islands stop costing anything
-  double timeToSleep = 0.5;             ///< s an island must be still before it sleeps
-  double sleepLinearTolerance = 0.01;   ///< m/s, slower counts as still
-  double sleepAngularTolerance = 0.035; ///< rad/s (2 degrees/s)
+  bool enableSleep = true;               ///< still islands stop costing anything
+  double timeToSleep = 0.5;              ///< s an island must be still before it sleeps
+  double sleepLinearTolerance = 0.01;    ///< m/s, slower counts as still
+  double sleepAngularTolerance = 0.035;  ///< rad/s (2 degrees/s)
 };
 
 enum class ShapeKind { Box, Circle, Polygon };
 
 struct ShapeDef {
   ShapeKind kind = ShapeKind::Box;
-  Vec2 size = Vec2(1.0, 1.0);   ///< box: full width and height (m)
-  double radius = 0.5;          ///< circle (m)
-  std::vector<Vec2> vertices;   ///< polygon: convex, any winding, body frame before `offset`
-  Vec2 offset = Vec2::Zero();   ///< m, shape origin in the body frame
-  double angle = 0.0;           ///< rad, shape rotation in the body frame
-  double density = 1.0;         ///< kg/m^2
+  Vec2 size = Vec2(1.0, 1.0);  ///< box: full width and height (m)
+  double radius = 0.5;         ///< circle (m)
+  std::vector<Vec2> vertices;  ///< polygon: convex, any winding, body frame before `offset`
+  Vec2 offset = Vec2::Zero();  ///< m, shape origin in the body frame
+  double angle = 0.0;          ///< rad, shape rotation in the body frame
+  double density = 1.0;        ///< kg/m^2
   double friction = 0.6;
   double restitution = 0.0;
 };
@@ -78,12 +78,13 @@ struct BodyDef {
   BodyType type = BodyType::Dynamic;
   Vec2 position = Vec2::Zero();  ///< m, the body origin in the world
   double angle = 0.0;            ///< rad
-  Vec2 linearVelocity = Vec2::Zero();  ///< m/s of the centre of mass (the origin for symmetric bodies)
-  double angularVelocity = 0.0;        ///< rad/s
-  double linearDamping = 0.0;          ///< 1/s
-  double angularDamping = 0.0;         ///< 1/s
-  bool bullet = false;  ///< continuous collision against every body, not only static ones
-  double mass = 0.0;    ///< kg; > 0 overrides the shapes' densities (inertia scales with it)
+  Vec2 linearVelocity =
+      Vec2::Zero();              ///< m/s of the centre of mass (the origin for symmetric bodies)
+  double angularVelocity = 0.0;  ///< rad/s
+  double linearDamping = 0.0;    ///< 1/s
+  double angularDamping = 0.0;   ///< 1/s
+  bool bullet = false;           ///< continuous collision against every body, not only static ones
+  double mass = 0.0;  ///< kg; > 0 overrides the shapes' densities (inertia scales with it)
   std::vector<ShapeDef> shapes;
 };
 
@@ -94,10 +95,10 @@ struct JointDef {
   JointType type = JointType::Revolute;
   BodyId bodyA;
   BodyId bodyB;
-  Vec2 anchor = Vec2::Zero();   ///< m, world point at creation
-  Vec2 axis = Vec2(1.0, 0.0);   ///< prismatic: world direction at creation
+  Vec2 anchor = Vec2::Zero();  ///< m, world point at creation
+  Vec2 axis = Vec2(1.0, 0.0);  ///< prismatic: world direction at creation
   bool enableLimit = false;
-  double lower = 0.0;           ///< rad (revolute) or m (prismatic)
+  double lower = 0.0;  ///< rad (revolute) or m (prismatic)
   double upper = 0.0;
   bool enableMotor = false;
   double motorSpeed = 0.0;      ///< rad/s or m/s

@@ -28,7 +28,9 @@ struct Rot {
   explicit Rot(double angle) : c(std::cos(angle)), s(std::sin(angle)) {}
   double angle() const { return std::atan2(s, c); }
   Vec2 apply(const Vec2& v) const { return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()); }
-  Vec2 applyInverse(const Vec2& v) const { return Vec2(c * v.x() + s * v.y(), -s * v.x() + c * v.y()); }
+  Vec2 applyInverse(const Vec2& v) const {
+    return Vec2(c * v.x() + s * v.y(), -s * v.x() + c * v.y());
+  }
   Rot operator*(const Rot& r) const {  // this then r, i.e. angle() + r.angle()
     Rot out;
     out.c = c * r.c - s * r.s;

@@ -14,11 +14,11 @@ namespace impulse2d {
 /// One contact point as users see it (ROS ~contacts, the CLI's --contacts).
 struct ContactInfo {
   BodyId bodyA, bodyB;
-  Vec2 point = Vec2::Zero();   ///< world, as found before the step moved the bodies
-  Vec2 normal = Vec2::Zero();  ///< unit, from body A to body B
-  double separation = 0.0;     ///< m, negative = penetration
-  double normalImpulse = 0.0;  ///< N s applied by the last step
-  double tangentImpulse = 0.0; ///< N s, along perp(normal)
+  Vec2 point = Vec2::Zero();    ///< world, as found before the step moved the bodies
+  Vec2 normal = Vec2::Zero();   ///< unit, from body A to body B
+  double separation = 0.0;      ///< m, negative = penetration
+  double normalImpulse = 0.0;   ///< N s applied by the last step
+  double tangentImpulse = 0.0;  ///< N s, along perp(normal)
 };
 
 /// What a joint is now, for joint_states and drawing.

@@ -22,9 +22,9 @@ inline uint64_t contactKey(int bodyA, int shapeA, int bodyB, int shapeB) {
 
 struct Contact {
   uint64_t key = 0;
-  int bodyA = -1, bodyB = -1;    // slot indices, bodyA < bodyB
-  int shapeA = -1, shapeB = -1;  // shape index within each body
-  Manifold manifold;             // normal from A to B
+  int bodyA = -1, bodyB = -1;             // slot indices, bodyA < bodyB
+  int shapeA = -1, shapeB = -1;           // shape index within each body
+  Manifold manifold;                      // normal from A to B
   double normalImpulse[2] = {0.0, 0.0};   // accumulated, N s
   double tangentImpulse[2] = {0.0, 0.0};  // accumulated, N s
   double friction = 0.0;

@@ -110,8 +110,9 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& b
         p.targetVelocity = -mp.separation / dt;
       } else if (baumgarte) {
         // Capped, so that bodies spawned deep inside each other separate instead of exploding.
-        p.targetVelocity = std::min(
-            def.baumgarte / dt * std::max(0.0, -mp.separation - def.linearSlop), def.maxPushVelocity);
+        p.targetVelocity =
+            std::min(def.baumgarte / dt * std::max(0.0, -mp.separation - def.linearSlop),
+                     def.maxPushVelocity);
       } else {
         p.targetVelocity = 0.0;  // the position pass removes the overlap without adding momentum
       }
@@ -151,7 +152,8 @@ void ContactSolver::solveVelocities() {
       ContactConstraintPoint& p = c.points[i];
       const double vt = relativeVelocity(a, b, p.rA, p.rB).dot(tangent);
       const double maxFriction = c.friction * p.normalImpulse;
-      const double total = std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
+      const double total =
+          std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
       const double delta = total - p.tangentImpulse;
       p.tangentImpulse = total;
       applyImpulse(a, b, p.rA, p.rB, delta * tangent);
@@ -224,11 +226,11 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
   for (ContactConstraint& c : constraints_) {
     Body& a = *c.a;
     Body& b = *c.b;
-    // Re-measure each point at the current (partly corrected) poses.
-    const Vec2 normal = a.xf.q.apply(c.localNormal);
-    Vec2 rA[2], rB[2];
+    Vec2 normal = Vec2::Zero(), rA[2], rB[2];
     double correction[2];
-    for (int i = 0; i < c.pointCount; ++i) {
+    // Measures point i at the current (partly corrected) poses.
+    auto measure = [&](int i) {
+      normal = a.xf.q.apply(c.localNormal);
       const Vec2 pointA = a.center + a.xf.q.apply(c.points[i].localA);
       const Vec2 pointB = b.center + b.xf.q.apply(c.points[i].localB);
       const double separation = (pointB - pointA).dot(normal);
@@ -236,44 +238,41 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
       rA[i] = mid - a.center;
       rB[i] = mid - b.center;
       deepest = std::min(deepest, separation);
-      correction[i] = std::clamp(def.baumgarte * (separation + def.linearSlop),
-                                 -kMaxLinearCorrection, 0.0);
-    }
-    double push[2] = {0.0, 0.0};
-    bool solved = false;
+      correction[i] =
+          std::clamp(def.baumgarte * (separation + def.linearSlop), -kMaxLinearCorrection, 0.0);
+    };
+    auto push = [&](int i, double amount) {
+      const Vec2 impulse = amount * normal;
+      a.center -= a.invMass * impulse;
+      a.angle -= a.invInertia * cross(rA[i], impulse);
+      b.center += b.invMass * impulse;
+      b.angle += b.invInertia * cross(rB[i], impulse);
+      if (a.invMass > 0.0 || a.invInertia > 0.0) syncTransform(a);
+      if (b.invMass > 0.0 || b.invInertia > 0.0) syncTransform(b);
+    };
     if (c.pointCount == 2) {
       // Both points together, as in the velocity pass: one after the other would tilt the body
       // a little every pass, and a tall stack leans over.
+      measure(0);
+      measure(1);
       const double rn1A = cross(rA[0], normal), rn1B = cross(rB[0], normal);
       const double rn2A = cross(rA[1], normal), rn2B = cross(rB[1], normal);
       const double m = a.invMass + b.invMass;
       const double k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
       const double k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
       const double k12 = m + a.invInertia * rn1A * rn2A + b.invInertia * rn1B * rn2B;
-      solved = wellConditioned(k11, k12, k22) &&
-               solveTwoPointLcp(k11, k12, k22, correction[0], correction[1], &push[0], &push[1]);
+      double x1 = 0.0, x2 = 0.0;
+      if (wellConditioned(k11, k12, k22) &&
+          solveTwoPointLcp(k11, k12, k22, correction[0], correction[1], &x1, &x2)) {
+        push(0, x1);
+        push(1, x2);
+        continue;
+      }
     }
+    // One point, or a pair too degenerate for the block: one at a time.
     for (int i = 0; i < c.pointCount; ++i) {
-      if (!solved) {  // one point, or a pair too degenerate for the block: one at a time
-        const Vec2 pointA = a.center + a.xf.q.apply(c.points[i].localA);
-        const Vec2 pointB = b.center + b.xf.q.apply(c.points[i].localB);
-        const Vec2 n = a.xf.q.apply(c.localNormal);
-        const double separation = (pointB - pointA).dot(n);
-        const double corr = std::clamp(def.baumgarte * (separation + def.linearSlop),
-                                       -kMaxLinearCorrection, 0.0);
-        rA[i] = 0.5 * (pointA + pointB) - a.center;
-        rB[i] = 0.5 * (pointA + pointB) - b.center;
-        push[i] = -corr * effectiveMass(a, b, rA[i], rB[i], n);
-      }
-      const Vec2 impulse = push[i] * normal;
-      a.center -= a.invMass * impulse;
-      a.angle -= a.invInertia * cross(rA[i], impulse);
-      b.center += b.invMass * impulse;
-      b.angle += b.invInertia * cross(rB[i], impulse);
-      if (!solved || i == 1) {
-        if (a.invMass > 0.0 || a.invInertia > 0.0) syncTransform(a);
-        if (b.invMass > 0.0 || b.invInertia > 0.0) syncTransform(b);
-      }
+      measure(i);
+      push(i, -correction[i] * effectiveMass(a, b, rA[i], rB[i], normal));
     }
   }
   return deepest >= -3.0 * def.linearSlop;

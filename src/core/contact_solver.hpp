@@ -13,7 +13,7 @@
 namespace impulse2d {
 
 struct ContactConstraintPoint {
-  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();  // from each centre of mass to the point
+  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();          // from each centre of mass to the point
   Vec2 localA = Vec2::Zero(), localB = Vec2::Zero();  // surface points, body frames, for NGS
   double normalImpulse = 0.0, tangentImpulse = 0.0;
   double normalMass = 0.0, tangentMass = 0.0;

@@ -82,8 +82,8 @@ void WorldImpl::updateSleep(double dt) {
       minSleepTime = std::min(minSleepTime, body.sleepTime);
       auto visit = [&](int other) {
         Body& next = bodies.items[other];
-        if (next.type == BodyType::Kinematic && (next.linearVelocity.squaredNorm() > 0.0 ||
-                                                 next.angularVelocity != 0.0)) {
+        if (next.type == BodyType::Kinematic &&
+            (next.linearVelocity.squaredNorm() > 0.0 || next.angularVelocity != 0.0)) {
           minSleepTime = 0.0;  // a moving kinematic body keeps what it touches awake
         }
         if (next.type != BodyType::Dynamic || next.islandFlag) return;

@@ -11,16 +11,16 @@
 
 namespace impulse2d {
 
-constexpr double kAngularSlop = 2.0 * kPi / 180.0;             // rad left alone by NGS
-constexpr double kMaxAngularCorrection = 8.0 * kPi / 180.0;   // rad per NGS pass
-constexpr double kMaxJointLinearCorrection = 0.2;             // m per NGS pass
+constexpr double kAngularSlop = 2.0 * kPi / 180.0;           // rad left alone by NGS
+constexpr double kMaxAngularCorrection = 8.0 * kPi / 180.0;  // rad per NGS pass
+constexpr double kMaxJointLinearCorrection = 0.2;            // m per NGS pass
 
 struct Joint {
   JointId id;
   JointDef def;
-  int bodyA = -1, bodyB = -1;  // slot indices
+  int bodyA = -1, bodyB = -1;                                     // slot indices
   Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
-  double referenceAngle = 0.0;  // angle B - angle A at creation
+  double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
   double restLength = 0.0;           // distance: the length the joint keeps (m)
 
@@ -37,7 +37,7 @@ struct Joint {
   Eigen::Matrix2d pointMass = Eigen::Matrix2d::Zero();
   Vec2 pointBias = Vec2::Zero();
   double axialMass = 0.0;
-  double angle = 0.0;  // current joint angle relative to the reference
+  double angle = 0.0;                       // current joint angle relative to the reference
   double lowerBias = 0.0, upperBias = 0.0;  // target rates of the limit constraints
   // Prismatic and distance: the axial row's direction (unit, world) and its lever arms
   // cross(r, axis) on each body; the prismatic also its perpendicular row's.

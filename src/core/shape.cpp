@@ -106,7 +106,8 @@ std::string makeShape(const ShapeDef& def, Shape* out) {
   if (!isFinite(def.offset)) return "offset: must be finite";
   if (!std::isfinite(def.angle)) return "angle: must be finite";
   if (!std::isfinite(def.density) || def.density < 0.0) return "density: must be finite and >= 0";
-  if (!std::isfinite(def.friction) || def.friction < 0.0) return "friction: must be finite and >= 0";
+  if (!std::isfinite(def.friction) || def.friction < 0.0)
+    return "friction: must be finite and >= 0";
   if (!std::isfinite(def.restitution) || def.restitution < 0.0 || def.restitution > 1.0) {
     return "restitution: must be in [0, 1]";
   }

@@ -28,7 +28,8 @@ void WorldImpl::createProxies(Body& body) {
   body.proxies.clear();
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
-    const int proxy = tree.createProxy(box, (static_cast<int64_t>(body.id.index) << 8) | int64_t(i));
+    const int proxy =
+        tree.createProxy(box, (static_cast<int64_t>(body.id.index) << 8) | int64_t(i));
     body.proxies.push_back(proxy);
     markMoved(proxy);
   }
@@ -56,17 +57,7 @@ void WorldImpl::updateProxies(Body& body, bool forced) {
 }
 
 void WorldImpl::destroyContactsOf(int bodySlot) {
-  size_t write = 0;
-  for (size_t read = 0; read < contacts.size(); ++read) {
-    if (contacts[read].bodyA == bodySlot || contacts[read].bodyB == bodySlot) {
-      contactByKey.erase(contacts[read].key);
-      continue;
-    }
-    if (write != read) contacts[write] = contacts[read];
-    contactByKey[contacts[write].key] = static_cast<int>(write);
-    ++write;
-  }
-  contacts.resize(write);
+  eraseContactsIf([&](const Contact& c) { return c.bodyA == bodySlot || c.bodyB == bodySlot; });
 }
 
 bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
@@ -290,20 +281,8 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
   w.jointsOfBody[joint.bodyB].push_back(slot);
   if (!def.name.empty()) w.jointByName[def.name] = slot;
   if (!def.collideConnected) {  // contacts between the two bodies end now
-    size_t write = 0;
-    for (size_t read = 0; read < w.contacts.size(); ++read) {
-      const Contact& c = w.contacts[read];
-      const bool pair = (c.bodyA == joint.bodyA && c.bodyB == joint.bodyB) ||
-                        (c.bodyA == joint.bodyB && c.bodyB == joint.bodyA);
-      if (pair) {
-        w.contactByKey.erase(c.key);
-        continue;
-      }
-      if (write != read) w.contacts[write] = w.contacts[read];
-      w.contactByKey[w.contacts[write].key] = static_cast<int>(write);
-      ++write;
-    }
-    w.contacts.resize(write);
+    const int lo = std::min(joint.bodyA, joint.bodyB), hi = std::max(joint.bodyA, joint.bodyB);
+    w.eraseContactsIf([&](const Contact& c) { return c.bodyA == lo && c.bodyB == hi; });
   }
   w.wakeBody(a);
   w.wakeBody(b);
@@ -477,7 +456,7 @@ uint64_t World::hash() const {
   for (size_t i = 0; i < impl_->bodies.items.size(); ++i) {
     if (!impl_->bodies.alive[i]) continue;
     const Body& b = impl_->bodies.items[i];
-    const double state[6] = {b.xf.p.x(),         b.xf.p.y(),         b.angle,
+    const double state[6] = {b.xf.p.x(),           b.xf.p.y(),           b.angle,
                              b.linearVelocity.x(), b.linearVelocity.y(), b.angularVelocity};
     mix(&i, sizeof(i));
     mix(state, sizeof(state));

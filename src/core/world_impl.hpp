@@ -57,10 +57,10 @@ struct Slots {
 inline bool isActive(const Body& body) { return body.type == BodyType::Dynamic && body.awake; }
 /// A body whose motion can disturb others: awake and not static.
 inline bool isMoving(const Body& body) {
-  return body.type == BodyType::Dynamic ? body.awake
-                                        : body.type == BodyType::Kinematic &&
-                                              (body.linearVelocity.squaredNorm() > 0.0 ||
-                                               body.angularVelocity != 0.0);
+  return body.type == BodyType::Dynamic
+             ? body.awake
+             : body.type == BodyType::Kinematic &&
+                   (body.linearVelocity.squaredNorm() > 0.0 || body.angularVelocity != 0.0);
 }
 
 struct WorldImpl {
@@ -98,6 +98,21 @@ struct WorldImpl {
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
   void updateProxies(Body& body, bool forced);
   void destroyContactsOf(int bodySlot);
+  /// Removes the contacts `pred` selects, keeping the others in order.
+  template <class Pred>
+  void eraseContactsIf(Pred pred) {
+    size_t write = 0;
+    for (size_t read = 0; read < contacts.size(); ++read) {
+      if (pred(contacts[read])) {
+        contactByKey.erase(contacts[read].key);
+        continue;
+      }
+      if (write != read) contacts[write] = contacts[read];
+      contactByKey[contacts[write].key] = static_cast<int>(write);
+      ++write;
+    }
+    contacts.resize(write);
+  }
   bool shouldCollide(int bodyA, int bodyB) const;
   void wakeBody(Body& body);
 

@@ -95,8 +95,10 @@ void WorldImpl::updateContacts() {
       updateContact(contact, a, b, def.speculativeDistance, def.warmStarting);
       // Something moving now touches a sleeper: wake it before the solver runs.
       if (contact.manifold.pointCount > 0) {
-        if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) wakeBody(bodies.items[contact.bodyB]);
-        if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake) wakeBody(bodies.items[contact.bodyA]);
+        if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake)
+          wakeBody(bodies.items[contact.bodyB]);
+        if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake)
+          wakeBody(bodies.items[contact.bodyA]);
       }
     }
     if (write != read) contacts[write] = contact;
@@ -178,7 +180,8 @@ void WorldImpl::correctPositions() {
     bool jointsOk = true;
     for (const int j : activeJoints) {
       Joint& joint = joints.items[j];
-      jointsOk &= solveJointPosition(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def);
+      jointsOk &=
+          solveJointPosition(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def);
     }
     const bool contactsOk = contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;

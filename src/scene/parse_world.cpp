@@ -10,8 +10,8 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   const Fields f(node, "the world settings",
                  {"gravity", "time_step", "velocity_iterations", "position_iterations", "plane",
                   "frame_id", "solver", "baumgarte", "linear_slop", "speculative_distance",
-                  "restitution_threshold", "max_push_velocity", "warm_starting", "enable_sleep", "time_to_sleep",
-                  "sleep_linear_tolerance", "sleep_angular_tolerance"});
+                  "restitution_threshold", "max_push_velocity", "warm_starting", "enable_sleep",
+                  "time_to_sleep", "sleep_linear_tolerance", "sleep_angular_tolerance"});
   WorldDef& w = scene->world;
   w.gravity = f.vec2("gravity", w.gravity);
   w.timeStep = f.number("time_step", w.timeStep);

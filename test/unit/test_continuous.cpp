@@ -121,7 +121,8 @@ TEST(Continuous, BulletDoesNotPassThroughAThinWall) {
 TEST(Continuous, FastBoxLandsOnThinGroundAndADynamicTargetStopsABullet) {
   World world;
   // 5 cm ground, a 0.5 m box arriving at 100 m/s: 1 m per step, 20 ground thicknesses.
-  const BodyId ground = test::addBox(world, "ground", Vec2(0, -0.025), 20.0, 0.05, BodyType::Static);
+  const BodyId ground =
+      test::addBox(world, "ground", Vec2(0, -0.025), 20.0, 0.05, BodyType::Static);
   (void)ground;
   const BodyId box = test::addBox(world, "box", Vec2(0, 20.0), 0.5, 0.5, BodyType::Dynamic);
   world.setVelocity(box, Vec2(0.0, -100.0), 0.0);

@@ -136,8 +136,8 @@ TEST(HardCase, FastBoxLandsOnThinGround) {
       world.step();
       lowest = std::min(lowest, world.body(box).xf.p.y());
     }
-    report("fast_box.yaml", solver, figures("lowest_centre=%.4f m rest=%.4f m", lowest,
-                                            world.body(box).xf.p.y()));
+    report("fast_box.yaml", solver,
+           figures("lowest_centre=%.4f m rest=%.4f m", lowest, world.body(box).xf.p.y()));
     EXPECT_GE(lowest, 0.0) << solverName(solver);  // centre never below the surface
     EXPECT_NEAR(world.body(box).xf.p.y(), 0.25, 0.01) << solverName(solver);
   }

@@ -208,8 +208,9 @@ TEST(SimCli, PrintsOneSummaryLineAndAppliesOverrides) {
   double wall = -1.0;
   int contacts = -1;
   char tail = 0;
-  EXPECT_EQ(std::sscanf(out[0].c_str(), "steps: 50, simulated: 1 s, wall: %lf s, bodies: 2, contacts: %d%c",
-                        &wall, &contacts, &tail),
+  EXPECT_EQ(std::sscanf(out[0].c_str(),
+                        "steps: 50, simulated: 1 s, wall: %lf s, bodies: 2, contacts: %d%c", &wall,
+                        &contacts, &tail),
             2)
       << out[0];
   EXPECT_GE(wall, 0.0) << out[0];
