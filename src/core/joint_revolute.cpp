@@ -1,17 +1,16 @@
 // The revolute joint: a shared point (a 2x2 block, Box2D Lite's K matrix) plus an optional motor
 // and angle limits on the relative rotation.
-#include "contact_solver.hpp"  // syncTransform
-#include "joint.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "joint.hpp"
 
 namespace impulse2d {
 namespace {
 
+// A pure torque impulse between the two bodies (motor and limit rows).
 void applyAngular(Body& a, Body& b, double impulse) {
-  a.angularVelocity -= a.invInertia * impulse;
-  b.angularVelocity += b.invInertia * impulse;
+  applyJointImpulse(a, b, Vec2::Zero(), impulse, impulse);
 }
 
 }  // namespace
@@ -27,15 +26,8 @@ void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double
   const bool baumgarte = def.solver == SolverType::Baumgarte;
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
   joint.pointBias = baumgarte ? Vec2(-def.baumgarte / dt * gap) : Vec2::Zero();
-
-  // A limit not yet reached is speculative (may be approached within the step); one already
-  // passed is pushed back by the Baumgarte bias or, with NGS, by the position pass.
-  auto limitBias = [&](double c) {
-    if (c > 0.0) return c / dt;
-    return baumgarte ? def.baumgarte / dt * c : 0.0;
-  };
-  joint.lowerBias = limitBias(joint.angle - joint.def.lower);
-  joint.upperBias = limitBias(joint.def.upper - joint.angle);
+  joint.lowerBias = limitBias(joint.angle - joint.def.lower, def, dt);
+  joint.upperBias = limitBias(joint.def.upper - joint.angle, def, dt);
   if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
@@ -43,10 +35,7 @@ void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double
 void warmStartRevolute(Joint& joint, Body& a, Body& b) {
   const Vec2& p = joint.pointImpulse;
   const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
-  a.linearVelocity -= a.invMass * p;
-  a.angularVelocity -= a.invInertia * (cross(joint.rA, p) + axial);
-  b.linearVelocity += b.invMass * p;
-  b.angularVelocity += b.invInertia * (cross(joint.rB, p) + axial);
+  applyJointImpulse(a, b, p, cross(joint.rA, p) + axial, cross(joint.rB, p) + axial);
 }
 
 void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt) {
@@ -77,10 +66,7 @@ void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt) {
                     cross(a.angularVelocity, joint.rA);
   const Vec2 impulse = joint.pointMass * (joint.pointBias - cdot);
   joint.pointImpulse += impulse;
-  a.linearVelocity -= a.invMass * impulse;
-  a.angularVelocity -= a.invInertia * cross(joint.rA, impulse);
-  b.linearVelocity += b.invMass * impulse;
-  b.angularVelocity += b.invInertia * cross(joint.rB, impulse);
+  applyJointImpulse(a, b, impulse, cross(joint.rA, impulse), cross(joint.rB, impulse));
 }
 
 bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
@@ -93,10 +79,7 @@ bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) 
     angularError = std::abs(c);
     c = std::clamp(c, -kMaxAngularCorrection, kMaxAngularCorrection);
     const double impulse = -joint.axialMass * c;
-    a.angle -= a.invInertia * impulse;
-    b.angle += b.invInertia * impulse;
-    syncTransform(a);
-    syncTransform(b);
+    applyJointCorrection(a, b, Vec2::Zero(), impulse, impulse);
   }
   const Vec2 rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
   const Vec2 rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
@@ -104,12 +87,7 @@ bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) 
   const double linearError = c.norm();
   if (linearError > kMaxJointLinearCorrection) c *= kMaxJointLinearCorrection / linearError;
   const Vec2 impulse = -(safeInverse(pointMassMatrix(a, b, rA, rB)) * c);
-  a.center -= a.invMass * impulse;
-  a.angle -= a.invInertia * cross(rA, impulse);
-  b.center += b.invMass * impulse;
-  b.angle += b.invInertia * cross(rB, impulse);
-  syncTransform(a);
-  syncTransform(b);
+  applyJointCorrection(a, b, impulse, cross(rA, impulse), cross(rB, impulse));
   return linearError <= def.linearSlop && angularError <= kAngularSlop;
 }
 

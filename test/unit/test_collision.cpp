@@ -8,25 +8,16 @@
 #include <random>
 #include <vector>
 
+#include "test_scenes.hpp"
+
 namespace impulse2d {
 namespace {
 
+using test::boxShape;
+using test::circleShape;
+
 constexpr double kExact = 1e-9;
 constexpr double kSpeculative = 0.02;
-
-Shape boxShape(double w, double h) {
-  Shape s;
-  s.type = ShapeType::Polygon;
-  s.polygon = makeBox(w, h);
-  return s;
-}
-
-Shape circleShape(double radius) {
-  Shape s;
-  s.type = ShapeType::Circle;
-  s.circle.radius = radius;
-  return s;
-}
 
 Transform pose(double x, double y, double angle = 0.0) { return Transform(Vec2(x, y), Rot(angle)); }
 

@@ -10,19 +10,8 @@
 namespace impulse2d {
 namespace {
 
-Shape boxShape(double w, double h) {
-  Shape s;
-  s.type = ShapeType::Polygon;
-  s.polygon = makeBox(w, h);
-  return s;
-}
-
-Shape circleShape(double r) {
-  Shape s;
-  s.type = ShapeType::Circle;
-  s.circle.radius = r;
-  return s;
-}
+using test::boxShape;
+using test::circleShape;
 
 TEST(Distance, HandComputedCases) {
   const Shape box = boxShape(2.0, 2.0), ball = circleShape(0.5);

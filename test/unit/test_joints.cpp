@@ -14,6 +14,9 @@
 namespace impulse2d {
 namespace {
 
+using test::momentum;
+using test::Momentum;
+
 using test::addBox;
 using test::addCircle;
 
@@ -306,21 +309,6 @@ TEST(Distance, SpringLimitsHold) {
 }
 
 // --- every type ---
-
-struct Momentum {
-  Vec2 linear = Vec2::Zero();
-  double angular = 0.0;  // about the world origin
-};
-
-Momentum momentum(const World& world) {
-  Momentum m;
-  for (BodyId id : world.bodies()) {
-    const Body& b = world.body(id);
-    m.linear += b.mass * b.linearVelocity;
-    m.angular += b.mass * cross(b.center, b.linearVelocity) + b.inertia * b.angularVelocity;
-  }
-  return m;
-}
 
 TEST(JointTypes, TwoFreeBodiesKeepTheirMomentumAndTheirJoint) {
   // Joint impulses act equally and oppositely along each row's Jacobian; if a Jacobian were

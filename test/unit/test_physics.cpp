@@ -10,6 +10,9 @@
 namespace impulse2d {
 namespace {
 
+using test::momentum;
+using test::Momentum;
+
 using test::addBox;
 using test::addCircle;
 
@@ -80,21 +83,6 @@ TEST(Physics, BoxSlidesDownInclineAtTheCoulombRate) {
   for (SolverType solver : {SolverType::Baumgarte, SolverType::NonlinearGaussSeidel}) {
     EXPECT_NEAR(inclineAcceleration(mu, solver), expected, 0.03 * expected);
   }
-}
-
-struct Momentum {
-  Vec2 linear = Vec2::Zero();
-  double angular = 0.0;  // about the world origin
-};
-
-Momentum momentum(const World& world) {
-  Momentum m;
-  for (BodyId id : world.bodies()) {
-    const Body& b = world.body(id);
-    m.linear += b.mass * b.linearVelocity;
-    m.angular += b.mass * cross(b.center, b.linearVelocity) + b.inertia * b.angularVelocity;
-  }
-  return m;
 }
 
 TEST(Physics, ZeroGravityCollisionConservesMomentum) {

@@ -38,6 +38,37 @@ inline BodyId addCircle(World& world, const std::string& name, const Vec2& posit
   return world.createBody(def);
 }
 
+/// Collision shapes centred on their body's origin.
+inline Shape boxShape(double w, double h) {
+  Shape s;
+  s.type = ShapeType::Polygon;
+  s.polygon = makeBox(w, h);
+  return s;
+}
+
+inline Shape circleShape(double radius) {
+  Shape s;
+  s.type = ShapeType::Circle;
+  s.circle.radius = radius;
+  return s;
+}
+
+struct Momentum {
+  Vec2 linear = Vec2::Zero();
+  double angular = 0.0;  // about the world origin
+};
+
+/// Total linear momentum, and angular momentum about the world origin.
+inline Momentum momentum(const World& world) {
+  Momentum m;
+  for (BodyId id : world.bodies()) {
+    const Body& b = world.body(id);
+    m.linear += b.mass * b.linearVelocity;
+    m.angular += b.mass * cross(b.center, b.linearVelocity) + b.inertia * b.angularVelocity;
+  }
+  return m;
+}
+
 /// A static ground whose top surface is y = 0.
 inline BodyId addGround(World& world, double width = 40.0) {
   return addBox(world, "ground", Vec2(0.0, -0.5), width, 1.0, BodyType::Static);
