@@ -10,6 +10,13 @@ PACKAGES=(
   libgeometry-msgs-dev libsensor-msgs-dev libvisualization-msgs-dev libros-rosgraph-msgs-dev
   ros-message-generation python3-roslaunch rosbash
 )
+# Further lists, one per feature: scripts/deps/*.txt, a package per line, # starts a comment.
+for list in "$(dirname "$0")"/deps/*.txt; do
+  [ -e "$list" ] || continue
+  while read -r p _; do
+    case "$p" in "" | "#"*) ;; *) PACKAGES+=("$p") ;; esac
+  done <"$list"
+done
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

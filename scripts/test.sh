@@ -42,6 +42,16 @@ if step "build (ASan+UBSan, core only)" bash -c "cmake -S '$REPO' -B '$ASAN_BUIL
     --gtest_output="xml:$RESULTS/sanitize/impulse2d_unit_tests.xml" >&2
 fi
 
+# Further stages, one file each, in name order: scripts/test.d/NN-name.sh. Each runs with REPO,
+# IMPULSE2D_WS (the built catkin workspace) and STAGE_RESULTS (a folder for its JUnit XML, which
+# is counted below) set; a non-zero exit counts as one failure.
+for stage in "$REPO"/scripts/test.d/*.sh; do
+  [ -e "$stage" ] || continue
+  name="$(basename "$stage" .sh)"
+  mkdir -p "$RESULTS/$name"
+  REPO="$REPO" STAGE_RESULTS="$RESULTS/$name" step "$name" bash "$stage" >&2
+done
+
 # Count test cases from every JUnit XML written (gtest and rostest both write them).
 read -r total failures < <(python3 - "$RESULTS" <<'PY'
 import glob, sys, xml.etree.ElementTree as ET
