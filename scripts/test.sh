@@ -34,11 +34,14 @@ if ! cp -r "$WS/build/test_results" "$RESULTS/catkin" 2>/dev/null; then
   failed_steps=$((failed_steps + 1))
 fi
 
-# Sanitizers: the core alone, built without catkin, so it also proves the core is ROS-free.
+# Sanitizers: the core alone, built without catkin, so it also proves the core is ROS-free. All
+# unit tests but the 5050-box pyramid (a minute of stepping in the release build, too slow
+# instrumented; it runs in the catkin build above).
 if step "build (ASan+UBSan, core only)" bash -c "cmake -S '$REPO' -B '$ASAN_BUILD' -DIMPULSE2D_CORE_ONLY=ON -DIMPULSE2D_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >&2 && cmake --build '$ASAN_BUILD' -j2 >&2"; then
   mkdir -p "$RESULTS/sanitize"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     step "unit tests under ASan+UBSan" "$ASAN_BUILD/impulse2d_unit_tests" \
+    --gtest_filter=-HardCase.PyramidOfBaseHundredStands \
     --gtest_output="xml:$RESULTS/sanitize/impulse2d_unit_tests.xml" >&2
 fi
 

@@ -37,20 +37,74 @@ enum class SolverType {
   /// Post-stabilisation: the velocity pass has no position bias (no momentum is added), then
   /// `position_iterations` non-linear Gauss-Seidel passes push overlapping bodies apart.
   NonlinearGaussSeidel,
+  /// Sub-stepping with soft constraints (Catto's "soft step", Box2D v3): `velocity_iterations`
+  /// sub-steps, each integrating gravity, solving once with a soft position bias (contacts and
+  /// joints are stiff damped springs), moving the bodies and relaxing once without bias (taking
+  /// back the velocity the bias added); restitution after the last. position_iterations are not
+  /// used.
+  SoftStep,
+  /// Sub-stepping with post-stabilisation: `velocity_iterations` sub-steps, each integrating
+  /// gravity, solving once without position bias (rigid: no energy is added), moving the bodies
+  /// and solving once more (relax); restitution after the last, then `position_iterations` NGS
+  /// passes as in NonlinearGaussSeidel. The default: it holds every hard case (README "Solvers").
+  SubstepNgs,
 };
+
+/// Every solver, in the order tests and benchmarks run them.
+constexpr SolverType kAllSolvers[] = {SolverType::Baumgarte, SolverType::NonlinearGaussSeidel,
+                                      SolverType::SoftStep, SolverType::SubstepNgs};
+
+/// Solvers that split the step into velocity_iterations sub-steps.
+constexpr bool usesSubsteps(SolverType solver) {
+  return solver == SolverType::SoftStep || solver == SolverType::SubstepNgs;
+}
+
+/// The solver's name in scenes and on the command line: baumgarte, ngs, soft, substep.
+inline const char* solverName(SolverType solver) {
+  switch (solver) {
+    case SolverType::Baumgarte:
+      return "baumgarte";
+    case SolverType::NonlinearGaussSeidel:
+      return "ngs";
+    case SolverType::SoftStep:
+      return "soft";
+    case SolverType::SubstepNgs:
+      return "substep";
+  }
+  return "unknown";
+}
+
+/// The inverse of solverName; false for an unknown name.
+inline bool solverFromName(const std::string& name, SolverType* solver) {
+  for (SolverType s : kAllSolvers) {
+    if (name == solverName(s)) {
+      *solver = s;
+      return true;
+    }
+  }
+  return false;
+}
 
 struct WorldDef {
   Vec2 gravity = Vec2(0.0, -9.81);  ///< m/s^2
   double timeStep = 0.01;           ///< s, the fixed step of World::step()
   int velocityIterations = 8;
   int positionIterations = 3;
-  SolverType solver = SolverType::NonlinearGaussSeidel;
+  SolverType solver = SolverType::SubstepNgs;
   double baumgarte = 0.2;             ///< fraction of the penetration removed per step
   double linearSlop = 0.005;          ///< m, penetration left alone so contacts persist
   double speculativeDistance = 0.02;  ///< m, contacts are kept this far before touching
   double restitutionThreshold = 1.0;  ///< m/s, slower impacts do not bounce
   double maxPushVelocity = 3.0;       ///< m/s, the fastest Baumgarte pushes overlaps apart
   bool warmStarting = true;
+  /// Soft step only: contacts push out of overlaps as damped springs of this frequency, capped
+  /// at 0.15 x the sub-step rate (stiffer ones were measured to shake large pyramids apart) and
+  /// twice as stiff against static and kinematic bodies; joints hold as springs of jointHertz,
+  /// capped at 0.25 x the sub-step rate.
+  double contactHertz = 120.0;        ///< Hz
+  double contactDampingRatio = 10.0;  ///< strongly over-damped: no bounce from the push
+  double jointHertz = 60.0;           ///< Hz
+  double jointDampingRatio = 2.0;
   bool enableSleep = true;               ///< still islands stop costing anything
   double timeToSleep = 0.5;              ///< s an island must be still before it sleeps
   double sleepLinearTolerance = 0.01;    ///< m/s, slower counts as still

@@ -1,66 +1,16 @@
 #include "contact_solver.hpp"
 
+#include "contact_math.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace impulse2d {
 namespace {
 
-// Two-point manifolds are solved as a block only while their 2x2 matrix is this well conditioned;
-// nearly coincident points would make it singular, and then the points are solved one by one.
-constexpr double kMaxBlockCondition = 1000.0;
-
 // The largest position correction one NGS pass applies, so deep overlaps (spawned inside each
 // other) separate over several steps instead of exploding apart.
 constexpr double kMaxLinearCorrection = 0.2;
-
-double effectiveMass(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB,
-                     const Vec2& dir) {
-  const double rnA = cross(rA, dir), rnB = cross(rB, dir);
-  const double k = a.invMass + b.invMass + a.invInertia * rnA * rnA + b.invInertia * rnB * rnB;
-  return k > 0.0 ? 1.0 / k : 0.0;
-}
-
-Vec2 relativeVelocity(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB) {
-  return b.linearVelocity + cross(b.angularVelocity, rB) - a.linearVelocity -
-         cross(a.angularVelocity, rA);
-}
-
-void applyImpulse(Body& a, Body& b, const Vec2& rA, const Vec2& rB, const Vec2& impulse) {
-  a.linearVelocity -= a.invMass * impulse;
-  a.angularVelocity -= a.invInertia * cross(rA, impulse);
-  b.linearVelocity += b.invMass * impulse;
-  b.angularVelocity += b.invInertia * cross(rB, impulse);
-}
-
-// The 2x2 linear complementarity problem  w = K x + b,  x >= 0,  w >= 0,  x_i w_i = 0  has few
-// enough cases to try them all: both rows active, only the first, only the second, neither.
-// Returns false when none fits (round-off on a nearly degenerate pair).
-bool solveTwoPointLcp(double k11, double k12, double k22, double b1, double b2, double* x1,
-                      double* x2) {
-  const double det = k11 * k22 - k12 * k12;  // > 0: only well-conditioned pairs come here
-  double y1 = -(k22 * b1 - k12 * b2) / det;
-  double y2 = -(k11 * b2 - k12 * b1) / det;
-  if (!(y1 >= 0.0 && y2 >= 0.0)) {
-    y1 = -b1 / k11;
-    y2 = 0.0;
-    if (!(y1 >= 0.0 && k12 * y1 + b2 >= 0.0)) {
-      y1 = 0.0;
-      y2 = -b2 / k22;
-      if (!(y2 >= 0.0 && k12 * y2 + b1 >= 0.0)) {
-        y1 = y2 = 0.0;
-        if (!(b1 >= 0.0 && b2 >= 0.0)) return false;
-      }
-    }
-  }
-  *x1 = y1;
-  *x2 = y2;
-  return true;
-}
-
-bool wellConditioned(double k11, double k12, double k22) {
-  return k11 * k11 < kMaxBlockCondition * (k11 * k22 - k12 * k12);
-}
 
 }  // namespace
 
@@ -72,6 +22,7 @@ void syncTransform(Body& body) {
 void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& bodies,
                             const WorldDef& def, double dt) {
   constraints_.clear();
+  substeps_ = 0;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
   for (Contact& contact : contacts) {
     const Manifold& m = contact.manifold;
@@ -201,12 +152,15 @@ void ContactSolver::applyRestitution(double threshold) {
     if (c.restitution == 0.0) continue;
     for (int i = 0; i < c.pointCount; ++i) {
       ContactConstraintPoint& p = c.points[i];
-      if (p.approachVelocity > -threshold || p.normalImpulse == 0.0) continue;
+      // Only points that pushed: a speculative point the bodies never reached does not bounce.
+      if (p.approachVelocity > -threshold || std::max(p.normalImpulse, p.maxNormalImpulse) == 0.0)
+        continue;
       const double vn = relativeVelocity(*c.a, *c.b, p.rA, p.rB).dot(c.normal);
       const double target = -c.restitution * p.approachVelocity;
       const double total = std::max(p.normalImpulse - p.normalMass * (vn - target), 0.0);
       const double delta = total - p.normalImpulse;
       p.normalImpulse = total;
+      p.totalNormalImpulse += delta;
       applyImpulse(*c.a, *c.b, p.rA, p.rB, delta * c.normal);
     }
   }
@@ -215,8 +169,10 @@ void ContactSolver::applyRestitution(double threshold) {
 void ContactSolver::storeImpulses() {
   for (ContactConstraint& c : constraints_) {
     for (int i = 0; i < c.pointCount; ++i) {
-      c.contact->normalImpulse[i] = c.points[i].normalImpulse;
-      c.contact->tangentImpulse[i] = c.points[i].tangentImpulse;
+      // Always the whole step's impulse; the soft step divides it again for its warm start.
+      const ContactConstraintPoint& p = c.points[i];
+      c.contact->normalImpulse[i] = substeps_ > 0 ? p.totalNormalImpulse : p.normalImpulse;
+      c.contact->tangentImpulse[i] = substeps_ > 0 ? p.totalTangentImpulse : p.tangentImpulse;
     }
   }
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "contact.hpp"
+#include "feedback.hpp"
 
 #include <impulse2d/body.hpp>
 #include <impulse2d/defs.hpp>
@@ -20,6 +21,11 @@ struct ContactConstraintPoint {
   double targetVelocity = 0.0;    // the normal velocity the point must at least reach
   double approachVelocity = 0.0;  // normal velocity before solving, for restitution
   double separation = 0.0;
+  // Soft step: the contact point fixed in each body (body frame, from the centre of mass), so
+  // the separation can be followed through the sub-steps without a new narrow phase.
+  Vec2 anchorA = Vec2::Zero(), anchorB = Vec2::Zero();
+  double maxNormalImpulse = 0.0;  // largest of any sub-step: did the point push at all?
+  double totalNormalImpulse = 0.0, totalTangentImpulse = 0.0;  // summed over the sub-steps
 };
 
 struct ContactConstraint {
@@ -35,6 +41,7 @@ struct ContactConstraint {
   // once; k is their 2x2 effective-mass matrix, used when `blockSolve` is set.
   bool blockSolve = false;
   double k11 = 0.0, k12 = 0.0, k22 = 0.0;
+  Feedback soft;  // soft step: the contact spring (stiffer against static bodies)
 };
 
 class ContactSolver {
@@ -53,8 +60,20 @@ class ContactSolver {
   bool solvePositions(const WorldDef& def);
   size_t size() const { return constraints_.size(); }
 
+  // --- sub-stepping solvers (contact_solver_substeps.cpp) ---
+  /// After prepare(): sets the soft step's springs for sub-steps of h and turns the arbiters'
+  /// whole-step impulses into one sub-step's warm start.
+  void prepareSubsteps(const WorldDef& def, int substeps, double h);
+  /// One iteration at the current poses; useBias: the soft step's push out of overlaps.
+  void solveSubstep(double h, bool useBias, double maxPushVelocity);
+  /// After each sub-step's relax pass: adds what the sub-step applied to the step's totals.
+  void addSubstepImpulses();
+
  private:
   void solveNormalBlock(ContactConstraint& c);
+  void solveSoftNormalBlock(ContactConstraint& c, const double bias[2], const Feedback fb[2]);
+
+  int substeps_ = 0;  // 0: a one-pass solver (Baumgarte or NGS)
 
   std::vector<ContactConstraint> constraints_;
 };

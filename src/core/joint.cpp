@@ -39,9 +39,13 @@ void applyJointCorrection(Body& a, Body& b, const Vec2& p, double angularA, doub
   syncTransform(b);
 }
 
-double limitBias(double c, const WorldDef& def, double dt) {
-  if (c > 0.0) return c / dt;
-  return def.solver == SolverType::Baumgarte ? def.baumgarte / dt * c : 0.0;
+double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb) {
+  if (c > 0.0) {
+    *rowFb = Feedback();
+    return c / dt;
+  }
+  *rowFb = fb;
+  return fb.rate * c;
 }
 
 Softness softness(double frequency, double dampingRatio, double effectiveMass, double dt) {
@@ -71,22 +75,24 @@ void initJoint(Joint& joint, const Body& a, const Body& b) {
   }
 }
 
-void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, const Feedback& fb,
+                  double dt) {
+  joint.feedback = fb;
   if (!def.warmStarting) {  // the world resets only the impulses every type shares
     joint.angularImpulse = joint.lengthImpulse = 0.0;
   }
   switch (joint.def.type) {
     case JointType::Revolute:
-      prepareRevolute(joint, a, b, def, dt);
+      prepareRevolute(joint, a, b, fb, dt);
       break;
     case JointType::Prismatic:
-      preparePrismatic(joint, a, b, def, dt);
+      preparePrismatic(joint, a, b, fb, dt);
       break;
     case JointType::Weld:
-      prepareWeld(joint, a, b, def, dt);
+      prepareWeld(joint, a, b, fb, dt);
       break;
     case JointType::Distance:
-      prepareDistance(joint, a, b, def, dt);
+      prepareDistance(joint, a, b, fb, dt);
       break;
   }
 }

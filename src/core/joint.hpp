@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 
+#include "feedback.hpp"
+
 namespace impulse2d {
 
 constexpr double kAngularSlop = 2.0 * kPi / 180.0;           // rad left alone by NGS
@@ -50,12 +52,18 @@ struct Joint {
   Eigen::Matrix3d blockMass = Eigen::Matrix3d::Zero();
   // Spring rows (weld angle, distance length): softened effective mass and the softness gamma.
   double springMass = 0.0, springGamma = 0.0;
+  // The feedback of this pass for the equality rows and for each limit (a limit not yet reached
+  // is approached speculatively, which is always rigid).
+  Feedback feedback, lowerFeedback, upperFeedback;
 };
 
 /// Initialises anchors and reference angle from a validated def.
 void initJoint(Joint& joint, const Body& a, const Body& b);
 
-void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+/// Computes the rows of this pass at the bodies' current poses; dt is the pass's time step (the
+/// sub-step for the soft step).
+void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, const Feedback& fb,
+                  double dt);
 void warmStartJoint(Joint& joint, Body& a, Body& b);
 void solveJointVelocity(Joint& joint, Body& a, Body& b, double dt);
 /// One NGS position pass; returns true when the joint's error is within the slop.
@@ -77,9 +85,10 @@ void applyJointImpulse(Body& a, Body& b, const Vec2& p, double angularA, double 
 /// The same as a position correction (NGS), then syncs both transforms.
 void applyJointCorrection(Body& a, Body& b, const Vec2& p, double angularA, double angularB);
 /// Target rate of a one-sided limit row whose position error is c (>= 0 means within): a limit
-/// not yet reached may be approached within the step (speculative); one already passed is pushed
-/// back by the Baumgarte bias or, with NGS, by the position pass.
-double limitBias(double c, const WorldDef& def, double dt);
+/// not yet reached may be approached within the step (speculative, rigid); one already passed is
+/// pushed back with the pass's feedback (none with NGS: its position pass does it). `rowFb`
+/// receives the feedback the row uses.
+double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb);
 
 /// A soft (spring) row. With effective mass m, stiffness k = m w^2 and damping c = 2 m zeta w
 /// (w = 2 pi frequency), implicit Euler over one step asks the impulse L to satisfy
@@ -94,23 +103,23 @@ struct Softness {
 Softness softness(double frequency, double dampingRatio, double effectiveMass, double dt);
 
 // --- per type ---
-void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void prepareRevolute(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
 void warmStartRevolute(Joint& joint, Body& a, Body& b);
 void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt);
 bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
 
-void preparePrismatic(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void preparePrismatic(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
 void warmStartPrismatic(Joint& joint, Body& a, Body& b);
 void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt);
 bool solvePrismaticPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
 JointState measurePrismatic(const Joint& joint, const Body& a, const Body& b);
 
-void prepareWeld(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void prepareWeld(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
 void warmStartWeld(Joint& joint, Body& a, Body& b);
 void solveWeldVelocity(Joint& joint, Body& a, Body& b, double dt);
 bool solveWeldPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
 
-void prepareDistance(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt);
+void prepareDistance(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
 void warmStartDistance(Joint& joint, Body& a, Body& b);
 void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double dt);
 bool solveDistancePosition(Joint& joint, Body& a, Body& b, const WorldDef& def);

@@ -58,7 +58,7 @@ void applyAxial(const Joint& j, Body& a, Body& b, double impulse) {
 
 }  // namespace
 
-void prepareDistance(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+void prepareDistance(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
   const Rod rod = rodOf(joint, a, b);
   joint.rA = rod.rA;
   joint.rB = rod.rB;
@@ -76,13 +76,14 @@ void prepareDistance(Joint& joint, Body& a, Body& b, const WorldDef& def, double
     joint.springGamma = soft.gamma;
     joint.springMass = k + soft.gamma > 0.0 ? 1.0 / (k + soft.gamma) : 0.0;
     joint.lengthBias = -soft.biasRate * c;
-    joint.lowerBias = limitBias(rod.length - joint.def.minLength, def, dt);
+    joint.lowerBias = limitBias(rod.length - joint.def.minLength, fb, dt, &joint.lowerFeedback);
     // An infinite maxLength never binds: its row is skipped, and inf never enters a bias.
-    joint.upperBias = std::isfinite(joint.def.maxLength)
-                          ? limitBias(joint.def.maxLength - rod.length, def, dt)
-                          : 0.0;
+    joint.upperBias =
+        std::isfinite(joint.def.maxLength)
+            ? limitBias(joint.def.maxLength - rod.length, fb, dt, &joint.upperFeedback)
+            : 0.0;
   } else {
-    joint.lengthBias = def.solver == SolverType::Baumgarte ? -def.baumgarte / dt * c : 0.0;
+    joint.lengthBias = fb.rate > 0.0 ? -fb.rate * c : 0.0;
     joint.lowerImpulse = joint.upperImpulse = 0.0;
   }
 }
@@ -94,7 +95,9 @@ void warmStartDistance(Joint& joint, Body& a, Body& b) {
 void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
   auto rate = [&] { return lengthRate(joint.axis, joint.axisArmA, joint.axisArmB, a, b); };
   if (!isSpring(joint)) {
-    const double impulse = joint.axialMass * (joint.lengthBias - rate());
+    const Feedback& fb = joint.feedback;
+    const double impulse = fb.massScale * joint.axialMass * (joint.lengthBias - rate()) -
+                           fb.impulseScale * joint.lengthImpulse;
     joint.lengthImpulse += impulse;
     applyAxial(joint, a, b, impulse);
     return;
@@ -106,14 +109,14 @@ void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
   applyAxial(joint, a, b, spring);
 
   if (joint.def.minLength > 0.0) {  // length - min >= 0
-    const double lower =
-        std::max(joint.lowerImpulse - joint.axialMass * (rate() + joint.lowerBias), 0.0);
+    const double lower = solveOneSided(joint.lowerImpulse, joint.axialMass,
+                                       rate() + joint.lowerBias, joint.lowerFeedback);
     applyAxial(joint, a, b, lower - joint.lowerImpulse);
     joint.lowerImpulse = lower;
   }
   if (std::isfinite(joint.def.maxLength)) {  // max - length >= 0, pushing along -u
-    const double upper =
-        std::max(joint.upperImpulse - joint.axialMass * (-rate() + joint.upperBias), 0.0);
+    const double upper = solveOneSided(joint.upperImpulse, joint.axialMass,
+                                       -rate() + joint.upperBias, joint.upperFeedback);
     applyAxial(joint, a, b, -(upper - joint.upperImpulse));
     joint.upperImpulse = upper;
   }

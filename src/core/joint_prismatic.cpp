@@ -98,16 +98,15 @@ double axialMassOf(const Joint& j, const Body& a, const Body& b) {
 
 }  // namespace
 
-void preparePrismatic(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+void preparePrismatic(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
   const Rail rail = railOf(joint, a, b);
   storeRail(joint, rail, a, b);
   joint.pointMass = safeInverse(blockMatrix(joint, a, b));
   joint.axialMass = axialMassOf(joint, a, b);
-  const bool baumgarte = def.solver == SolverType::Baumgarte;
   const Vec2 error(rail.normal.dot(rail.d), joint.angle);
-  joint.pointBias = baumgarte ? Vec2(-def.baumgarte / dt * error) : Vec2::Zero();
-  joint.lowerBias = limitBias(joint.axialPosition - joint.def.lower, def, dt);
-  joint.upperBias = limitBias(joint.def.upper - joint.axialPosition, def, dt);
+  joint.pointBias = fb.rate > 0.0 ? Vec2(-fb.rate * error) : Vec2::Zero();
+  joint.lowerBias = limitBias(joint.axialPosition - joint.def.lower, fb, dt, &joint.lowerFeedback);
+  joint.upperBias = limitBias(joint.def.upper - joint.axialPosition, fb, dt, &joint.upperFeedback);
   if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
@@ -129,13 +128,15 @@ void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt) {
   }
   if (def.enableLimit) {
     // Lower: x - lower >= 0. Upper: upper - x >= 0, whose impulse pushes along -u.
-    const double lower = std::max(
-        joint.lowerImpulse - joint.axialMass * (axialRate(joint, a, b) + joint.lowerBias), 0.0);
+    const double lower =
+        solveOneSided(joint.lowerImpulse, joint.axialMass, axialRate(joint, a, b) + joint.lowerBias,
+                      joint.lowerFeedback);
     applyRows(joint, a, b, 0.0, 0.0, lower - joint.lowerImpulse);
     joint.lowerImpulse = lower;
 
-    const double upper = std::max(
-        joint.upperImpulse - joint.axialMass * (-axialRate(joint, a, b) + joint.upperBias), 0.0);
+    const double upper =
+        solveOneSided(joint.upperImpulse, joint.axialMass,
+                      -axialRate(joint, a, b) + joint.upperBias, joint.upperFeedback);
     applyRows(joint, a, b, 0.0, 0.0, -(upper - joint.upperImpulse));
     joint.upperImpulse = upper;
   }
@@ -143,7 +144,9 @@ void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt) {
   const Vec2 cdot(joint.normal.dot(b.linearVelocity - a.linearVelocity) +
                       joint.normalArmB * b.angularVelocity - joint.normalArmA * a.angularVelocity,
                   b.angularVelocity - a.angularVelocity);
-  const Vec2 impulse = joint.pointMass * (joint.pointBias - cdot);
+  const Feedback& fb = joint.feedback;
+  const Vec2 impulse = fb.massScale * (joint.pointMass * (joint.pointBias - cdot)) -
+                       fb.impulseScale * joint.pointImpulse;
   joint.pointImpulse += impulse;
   applyRows(joint, a, b, impulse.x(), impulse.y(), 0.0);
 }

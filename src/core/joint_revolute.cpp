@@ -15,7 +15,7 @@ void applyAngular(Body& a, Body& b, double impulse) {
 
 }  // namespace
 
-void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+void prepareRevolute(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
   joint.rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
   joint.rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
   joint.pointMass = safeInverse(pointMassMatrix(a, b, joint.rA, joint.rB));
@@ -23,11 +23,10 @@ void prepareRevolute(Joint& joint, Body& a, Body& b, const WorldDef& def, double
   joint.axialMass = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
   joint.angle = b.angle - a.angle - joint.referenceAngle;
 
-  const bool baumgarte = def.solver == SolverType::Baumgarte;
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pointBias = baumgarte ? Vec2(-def.baumgarte / dt * gap) : Vec2::Zero();
-  joint.lowerBias = limitBias(joint.angle - joint.def.lower, def, dt);
-  joint.upperBias = limitBias(joint.def.upper - joint.angle, def, dt);
+  joint.pointBias = fb.rate > 0.0 ? Vec2(-fb.rate * gap) : Vec2::Zero();
+  joint.lowerBias = limitBias(joint.angle - joint.def.lower, fb, dt, &joint.lowerFeedback);
+  joint.upperBias = limitBias(joint.def.upper - joint.angle, fb, dt, &joint.upperFeedback);
   if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
@@ -51,20 +50,22 @@ void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt) {
   if (def.enableLimit) {
     // Lower: angle - lower >= 0. Upper: upper - angle >= 0, so its impulse acts negatively.
     const double cdotLower = b.angularVelocity - a.angularVelocity;
-    const double lower =
-        std::max(joint.lowerImpulse - joint.axialMass * (cdotLower + joint.lowerBias), 0.0);
+    const double lower = solveOneSided(joint.lowerImpulse, joint.axialMass,
+                                       cdotLower + joint.lowerBias, joint.lowerFeedback);
     applyAngular(a, b, lower - joint.lowerImpulse);
     joint.lowerImpulse = lower;
 
     const double cdotUpper = a.angularVelocity - b.angularVelocity;
-    const double upper =
-        std::max(joint.upperImpulse - joint.axialMass * (cdotUpper + joint.upperBias), 0.0);
+    const double upper = solveOneSided(joint.upperImpulse, joint.axialMass,
+                                       cdotUpper + joint.upperBias, joint.upperFeedback);
     applyAngular(a, b, -(upper - joint.upperImpulse));
     joint.upperImpulse = upper;
   }
   const Vec2 cdot = b.linearVelocity + cross(b.angularVelocity, joint.rB) - a.linearVelocity -
                     cross(a.angularVelocity, joint.rA);
-  const Vec2 impulse = joint.pointMass * (joint.pointBias - cdot);
+  const Feedback& fb = joint.feedback;
+  const Vec2 impulse = fb.massScale * (joint.pointMass * (joint.pointBias - cdot)) -
+                       fb.impulseScale * joint.pointImpulse;
   joint.pointImpulse += impulse;
   applyJointImpulse(a, b, impulse, cross(joint.rA, impulse), cross(joint.rB, impulse));
 }

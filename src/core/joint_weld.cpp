@@ -52,14 +52,13 @@ Vec2 pointRate(const Joint& j, const Body& a, const Body& b) {
 
 }  // namespace
 
-void prepareWeld(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt) {
+void prepareWeld(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
   joint.rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
   joint.rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
   joint.angle = b.angle - a.angle - joint.referenceAngle;
   const Eigen::Matrix3d k = blockMatrix(a, b, joint.rA, joint.rB);
-  const bool baumgarte = def.solver == SolverType::Baumgarte;
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pointBias = baumgarte ? Vec2(-def.baumgarte / dt * gap) : Vec2::Zero();
+  joint.pointBias = fb.rate > 0.0 ? Vec2(-fb.rate * gap) : Vec2::Zero();
 
   if (isSoft(joint)) {
     joint.pointMass = safeInverse(k.topLeftCorner<2, 2>());
@@ -72,7 +71,7 @@ void prepareWeld(Joint& joint, Body& a, Body& b, const WorldDef& def, double dt)
     joint.angularBias = -soft.biasRate * joint.angle;
   } else {
     joint.blockMass = safeInverse3(k);
-    joint.angularBias = baumgarte ? -def.baumgarte / dt * joint.angle : 0.0;
+    joint.angularBias = fb.rate > 0.0 ? -fb.rate * joint.angle : 0.0;
   }
 }
 
@@ -89,7 +88,10 @@ void solveWeldVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
     joint.angularImpulse += impulse;
     applyPointAndAngle(joint, a, b, Vec2::Zero(), impulse);
 
-    const Vec2 point = joint.pointMass * (joint.pointBias - pointRate(joint, a, b));
+    const Feedback& fb = joint.feedback;
+    const Vec2 point =
+        fb.massScale * (joint.pointMass * (joint.pointBias - pointRate(joint, a, b))) -
+        fb.impulseScale * joint.pointImpulse;
     joint.pointImpulse += point;
     applyPointAndAngle(joint, a, b, point, 0.0);
     return;
@@ -97,7 +99,11 @@ void solveWeldVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
   const Vec2 rate = pointRate(joint, a, b);
   const Eigen::Vector3d cdot(rate.x(), rate.y(), b.angularVelocity - a.angularVelocity);
   const Eigen::Vector3d bias(joint.pointBias.x(), joint.pointBias.y(), joint.angularBias);
-  const Eigen::Vector3d impulse = joint.blockMass * (bias - cdot);
+  const Eigen::Vector3d accumulated(joint.pointImpulse.x(), joint.pointImpulse.y(),
+                                    joint.angularImpulse);
+  const Feedback& fb = joint.feedback;
+  const Eigen::Vector3d impulse =
+      fb.massScale * (joint.blockMass * (bias - cdot)) - fb.impulseScale * accumulated;
   const Vec2 point = impulse.head<2>();
   joint.pointImpulse += point;
   joint.angularImpulse += impulse.z();

@@ -77,8 +77,20 @@ std::string World::validate(const WorldDef& def) {
   if (def.positionIterations < 0 || def.positionIterations > kMaxIterations) {
     return "position_iterations: must be in [0, " + std::to_string(kMaxIterations) + "]";
   }
-  if (def.solver != SolverType::Baumgarte && def.solver != SolverType::NonlinearGaussSeidel) {
-    return "solver: must be baumgarte or ngs";
+  if (std::string(solverName(def.solver)) == "unknown") {
+    return "solver: must be baumgarte, ngs or soft";
+  }
+  if (!(std::isfinite(def.contactHertz) && def.contactHertz > 0.0)) {
+    return "contact_hertz: must be finite and > 0";
+  }
+  if (!(std::isfinite(def.jointHertz) && def.jointHertz > 0.0)) {
+    return "joint_hertz: must be finite and > 0";
+  }
+  if (!finiteNonNegative(def.contactDampingRatio)) {
+    return "contact_damping_ratio: must be finite and >= 0";
+  }
+  if (!finiteNonNegative(def.jointDampingRatio)) {
+    return "joint_damping_ratio: must be finite and >= 0";
   }
   if (!std::isfinite(def.baumgarte) || def.baumgarte < 0.0 || def.baumgarte > 1.0) {
     return "baumgarte: must be in [0, 1]";

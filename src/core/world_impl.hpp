@@ -86,7 +86,8 @@ struct WorldImpl {
     double startAngle;
   };
   std::vector<FastBody> fastBodies;
-  std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
+  std::vector<FastBody> stepStart;  // sub-stepping solvers: where moving bodies began the step
+  std::vector<int> activeJoints;    // joints with an awake dynamic body, this step
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
   double time = 0.0;
   uint64_t steps = 0;
@@ -120,8 +121,15 @@ struct WorldImpl {
   void updateBroadPhase();
   void findNewContacts();
   void updateContacts();
+  double speculativeMargin(const Body& a, const Body& b) const;
   void integrateVelocities(double dt);
   void solve(double dt);
+  void solveSubsteps(double dt);
+  void collectActiveJoints();
+  /// Prepares the active joints for a pass of time step dt with the given feedback.
+  void prepareJoints(const Feedback& fb, double dt);
+  /// Moves awake bodies with their velocities over h (no continuous collision bookkeeping).
+  void moveBodies(double h);
   void integratePositions(double dt);
   void solveContinuous();
   void correctPositions();

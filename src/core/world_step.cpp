@@ -10,15 +10,19 @@ namespace impulse2d {
 void World::step() {
   WorldImpl& w = *impl_;
   const double dt = w.def.timeStep;
-  w.updateBroadPhase();       // 1. refit the fat boxes of bodies that left them
-  w.findNewContacts();        // 2. newly overlapping pairs become arbiters
-  w.updateContacts();         // 3. narrow phase; keep the impulses of matching contact ids
-  w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
-  w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
-  w.integratePositions(dt);   // 6. move with the solved velocities
-  w.solveContinuous();        // 7. fast bodies stop at their first impact instead of tunnelling
-  w.correctPositions();       // 8. NGS solver only: push remaining overlaps apart
-  w.updateSleep(dt);          // 9. islands still for long enough fall asleep
+  w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
+  w.findNewContacts();   // 2. newly overlapping pairs become arbiters
+  w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
+  if (usesSubsteps(w.def.solver)) {
+    w.solveSubsteps(dt);  // 4-6 in sub-steps (world_substeps.cpp)
+  } else {
+    w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
+    w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
+    w.integratePositions(dt);   // 6. move with the solved velocities
+  }
+  w.solveContinuous();   // 7. fast bodies stop at their first impact instead of tunnelling
+  w.correctPositions();  // 8. NGS solvers only: push remaining overlaps apart
+  w.updateSleep(dt);     // 9. islands still for long enough fall asleep
   w.clearForces();
   w.time += dt;
   ++w.steps;
@@ -92,7 +96,7 @@ void WorldImpl::updateContacts() {
     }
     // Two bodies that cannot move relative to each other keep last step's manifold.
     if (isMoving(a) || isMoving(b)) {
-      updateContact(contact, a, b, def.speculativeDistance, def.warmStarting);
+      updateContact(contact, a, b, speculativeMargin(a, b), def.warmStarting);
       // Something moving now touches a sleeper: wake it before the solver runs.
       if (contact.manifold.pointCount > 0) {
         if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake)
@@ -108,6 +112,16 @@ void WorldImpl::updateContacts() {
   contacts.resize(write);
 }
 
+// Points farther apart than this are left out of the manifold. Beyond the fixed margin, as far as
+// the pair can close in one step at its current speeds, so a body fast enough to cross the
+// margin in a step is caught at the surface instead of a step's travel inside it.
+double WorldImpl::speculativeMargin(const Body& a, const Body& b) const {
+  const double closing = (b.linearVelocity - a.linearVelocity).norm() +
+                         std::abs(a.angularVelocity) * a.maxExtent +
+                         std::abs(b.angularVelocity) * b.maxExtent;
+  return def.speculativeDistance + def.timeStep * closing;
+}
+
 void WorldImpl::integrateVelocities(double dt) {
   for (size_t i = 0; i < bodies.items.size(); ++i) {
     Body& body = bodies.items[i];
@@ -120,20 +134,33 @@ void WorldImpl::integrateVelocities(double dt) {
   }
 }
 
-void WorldImpl::solve(double dt) {
-  contactSolver.prepare(contacts, bodies.items, def, dt);
+void WorldImpl::collectActiveJoints() {
   activeJoints.clear();
   for (size_t j = 0; j < joints.items.size(); ++j) {
     if (!joints.alive[j]) continue;
     Joint& joint = joints.items[j];
     if (!isActive(bodies.items[joint.bodyA]) && !isActive(bodies.items[joint.bodyB])) continue;
     activeJoints.push_back(static_cast<int>(j));
-    prepareJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def, dt);
     if (!def.warmStarting) {
       joint.pointImpulse.setZero();
       joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
     }
   }
+}
+
+void WorldImpl::prepareJoints(const Feedback& fb, double dt) {
+  for (const int j : activeJoints) {
+    Joint& joint = joints.items[j];
+    prepareJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def, fb, dt);
+  }
+}
+
+void WorldImpl::solve(double dt) {
+  contactSolver.prepare(contacts, bodies.items, def, dt);
+  collectActiveJoints();
+  Feedback fb;  // NGS: no bias, its position pass corrects the drift
+  if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
+  prepareJoints(fb, dt);
 
   // Warm start: apply last step's impulses first, so the iterations only refine them.
   for (const int j : activeJoints) {
@@ -175,7 +202,9 @@ void WorldImpl::integratePositions(double dt) {
 }
 
 void WorldImpl::correctPositions() {
-  if (def.solver != SolverType::NonlinearGaussSeidel) return;
+  if (def.solver != SolverType::NonlinearGaussSeidel && def.solver != SolverType::SubstepNgs) {
+    return;
+  }
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;
     for (const int j : activeJoints) {

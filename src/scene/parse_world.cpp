@@ -8,10 +8,27 @@ namespace scene_detail {
 
 void parseWorld(const YAML::Node& node, Scene* scene) {
   const Fields f(node, "the world settings",
-                 {"gravity", "time_step", "velocity_iterations", "position_iterations", "plane",
-                  "frame_id", "solver", "baumgarte", "linear_slop", "speculative_distance",
-                  "restitution_threshold", "max_push_velocity", "warm_starting", "enable_sleep",
-                  "time_to_sleep", "sleep_linear_tolerance", "sleep_angular_tolerance"});
+                 {"gravity",
+                  "time_step",
+                  "velocity_iterations",
+                  "position_iterations",
+                  "plane",
+                  "frame_id",
+                  "solver",
+                  "baumgarte",
+                  "linear_slop",
+                  "speculative_distance",
+                  "restitution_threshold",
+                  "max_push_velocity",
+                  "warm_starting",
+                  "enable_sleep",
+                  "time_to_sleep",
+                  "sleep_linear_tolerance",
+                  "sleep_angular_tolerance",
+                  "contact_hertz",
+                  "contact_damping_ratio",
+                  "joint_hertz",
+                  "joint_damping_ratio"});
   WorldDef& w = scene->world;
   w.gravity = f.vec2("gravity", w.gravity);
   w.timeStep = f.number("time_step", w.timeStep);
@@ -19,12 +36,8 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   w.positionIterations = f.integer("position_iterations", w.positionIterations);
   if (f.has("solver")) {
     const std::string solver = f.string("solver", "");
-    if (solver == "baumgarte") {
-      w.solver = SolverType::Baumgarte;
-    } else if (solver == "ngs") {
-      w.solver = SolverType::NonlinearGaussSeidel;
-    } else {
-      throw SceneError("solver", "must be baumgarte or ngs, not " + quoted(solver));
+    if (!solverFromName(solver, &w.solver)) {
+      throw SceneError("solver", "must be baumgarte, ngs or soft, not " + quoted(solver));
     }
   }
   w.baumgarte = f.number("baumgarte", w.baumgarte);
@@ -37,6 +50,10 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   w.timeToSleep = f.number("time_to_sleep", w.timeToSleep);
   w.sleepLinearTolerance = f.number("sleep_linear_tolerance", w.sleepLinearTolerance);
   w.sleepAngularTolerance = f.number("sleep_angular_tolerance", w.sleepAngularTolerance);
+  w.contactHertz = f.number("contact_hertz", w.contactHertz);
+  w.contactDampingRatio = f.number("contact_damping_ratio", w.contactDampingRatio);
+  w.jointHertz = f.number("joint_hertz", w.jointHertz);
+  w.jointDampingRatio = f.number("joint_damping_ratio", w.jointDampingRatio);
   scene->plane = f.string("plane", scene->plane);
   if (scene->plane != "xz" && scene->plane != "xy") {
     throw SceneError("plane",

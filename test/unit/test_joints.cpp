@@ -20,11 +20,7 @@ using test::Momentum;
 using test::addBox;
 using test::addCircle;
 
-const SolverType kSolvers[] = {SolverType::Baumgarte, SolverType::NonlinearGaussSeidel};
-
-const char* solverName(SolverType solver) {
-  return solver == SolverType::Baumgarte ? "baumgarte" : "ngs";
-}
+const auto& kSolvers = kAllSolvers;
 
 WorldDef worldDef(SolverType solver, const Vec2& gravity = Vec2(0.0, -9.81)) {
   WorldDef def;

@@ -159,6 +159,19 @@ TEST(SceneParse, ReadsEveryKey) {
   EXPECT_EQ(s.joints[3].def.frequency, 2.0);
 }
 
+TEST(SceneParse, ReadsEverySolverAndTheSoftStepSprings) {
+  for (SolverType solver : kAllSolvers) {
+    const Scene s = parseOrFail(std::string("world: {solver: ") + solverName(solver) +
+                                ", contact_hertz: 90, contact_damping_ratio: 5, joint_hertz: 45, "
+                                "joint_damping_ratio: 1.5}\n");
+    EXPECT_EQ(s.world.solver, solver);
+    EXPECT_EQ(s.world.contactHertz, 90.0);
+    EXPECT_EQ(s.world.contactDampingRatio, 5.0);
+    EXPECT_EQ(s.world.jointHertz, 45.0);
+    EXPECT_EQ(s.world.jointDampingRatio, 1.5);
+  }
+}
+
 TEST(SceneParse, LeftOutKeysTakeTheDefinitionsDefaults) {
   const Scene s = parseOrFail(kFullScene);
   const Scene empty = parseOrFail("bodies: []");
