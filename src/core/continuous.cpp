@@ -8,6 +8,44 @@
 #include "world_impl.hpp"
 
 namespace impulse2d {
+namespace {
+
+// Samples of a sweep that starts in contact: a body turning this far in a step (up to a few
+// radians for a spinning rod) is checked every eighth of it.
+constexpr int kCloseSweepSamples = 8;
+
+// The deepest overlap of the two shapes at those poses (0 when apart).
+double overlapDepth(const Shape& a, const Transform& xfA, const Shape& b, const Transform& xfB) {
+  const Manifold m = collideShapes(a, xfA, b, xfB, 0.0);
+  double deepest = 0.0;
+  for (int i = 0; i < m.pointCount; ++i) deepest = std::max(deepest, -m.points[i].separation);
+  return deepest;
+}
+
+// For a sweep that starts touching the other shape: the latest t before any part of the shape
+// (not only the point in contact, which the speculative contact holds) has sunk deeper than
+// `allowed`, or 1 when it never does. Overlap is measured along the axis of least penetration,
+// which for a thin shape flips to its far side past the middle: `allowed` stays well below that.
+double turnIntoContact(const Shape& shape, const Sweep& sweep, const Shape& other,
+                       const Transform& otherXf, double allowed) {
+  double good = 0.0;
+  for (int k = 1; k <= kCloseSweepSamples; ++k) {
+    const double t = static_cast<double>(k) / kCloseSweepSamples;
+    if (overlapDepth(shape, sweep.at(t), other, otherXf) <= allowed) {
+      good = t;
+      continue;
+    }
+    double bad = t;
+    for (int i = 0; i < 10; ++i) {  // bisect down to 1/8000 of the step
+      const double mid = 0.5 * (good + bad);
+      (overlapDepth(shape, sweep.at(mid), other, otherXf) <= allowed ? good : bad) = mid;
+    }
+    return good;
+  }
+  return 1.0;
+}
+
+}  // namespace
 
 void WorldImpl::solveContinuous() {
   for (const FastBody& fast : fastBodies) {
@@ -45,11 +83,14 @@ void WorldImpl::solveContinuous() {
         if (gap >= def.speculativeDistance) {
           impact = std::min(impact, timeOfImpact(shape, sweep, otherShape, still, def.linearSlop));
         } else {
-          // Close already: this step's speculative contact stops the surfaces meeting, but a
-          // turn or a glancing hit may still carry the body in. At least its centre of mass
-          // must not pass into the other shape.
+          // Close already: this step's speculative contact holds the point in contact, but a
+          // turn or a glancing hit may still carry another part of the body in, and its centre
+          // of mass must never pass into the other shape.
           const double enter = raycastShape(otherShape, other.xf, sweep.c0, sweep.c1);
           if (enter > 0.0 && enter <= 1.0) impact = std::min(impact, enter);
+          const double allowed = std::max(2.0 * def.linearSlop,
+                                          0.25 * std::min(innerRadius(otherShape), body.minExtent));
+          impact = std::min(impact, turnIntoContact(shape, sweep, otherShape, other.xf, allowed));
         }
       }
     });
