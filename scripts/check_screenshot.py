@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Checks an RViz screenshot (scripts/screenshot.sh) for the impulse2d marker colours.
 
   check_screenshot.py SHOT.png --expect static,awake,asleep,... [--junit FILE --name NAME]

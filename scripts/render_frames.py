@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Draws a scene at several moments side by side, from impulse2d_sim's --csv output.
 
   render_frames.py SCENE.yaml OUT.png [--times 0,0.5,1,2] [--sim PATH] [--columns N]
