@@ -2,8 +2,7 @@
 # RViz end to end, both planes: scripts/screenshot.sh runs the node and RViz (under Xvfb) on the
 # demo scene (side view, xz) and on config/topdown.yaml (top-down, xy), and
 # scripts/check_screenshot.py asserts that the 3D view shows the marker colours of every body
-# state, contact points and normals (xz; without gravity the xy scene's contact forces are too
-# brief to show them reliably) and joints, not just the empty grid. A broken RViz config,
+# state, contact points and normals (scaled by impulse) and joints, not just the empty grid. A broken RViz config,
 # launch file or marker code fails it. JUnit XML: one case per plane for the run, one per colour.
 # Bound: 2 x 75 s (typically 2 x 20 s).
 set -uo pipefail
@@ -43,5 +42,5 @@ check_plane() {  # check_plane PLANE SCENE COLOURS
 }
 
 check_plane xz "$REPO/config/demo.yaml" static,awake,asleep,contact_point,contact_normal,joint
-check_plane xy "$REPO/config/topdown.yaml" static,kinematic,awake,asleep,contact_point,joint
+check_plane xy "$REPO/config/topdown.yaml" static,kinematic,awake,asleep,contact_point,contact_normal,joint
 exit "$status"
