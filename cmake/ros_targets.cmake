@@ -29,8 +29,8 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   find_package(roslaunch REQUIRED)
 
-  # Conversions and the ~scene parameter, without a master.
-  catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp)
+  # Conversions, the ~scene parameter and the markers, without a master.
+  catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp test/ros/markers_test.cpp)
   target_link_libraries(impulse2d_ros_unit_tests impulse2d_ros GTest::gtest_main)
 
   # One gtest node, run once against impulse2d_node and once against the nodelet.
