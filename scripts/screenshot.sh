@@ -52,7 +52,10 @@ if [ -z "$scene" ]; then
 fi
 [ -f "$scene" ] || die "no scene file $scene"
 scene="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")"
-read -r scene_plane frame_id < <(python3 - "$scene" <<'PY' || echo "? ?"
+# A scene the node would refuse would only show an empty grid: say why instead.
+sim_error="$("$WS/devel/lib/impulse2d/impulse2d_sim" "$scene" --steps 1 2>&1 >/dev/null)" ||
+  die "the scene is refused: ${sim_error#impulse2d_sim: }"
+read -r scene_plane frame_id < <(python3 - "$scene" 2>/dev/null <<'PY' || echo "? ?"
 import sys, yaml
 world = (yaml.safe_load(open(sys.argv[1])) or {}).get("world") or {}
 print(world.get("plane", "xz"), world.get("frame_id", "world"))
@@ -71,24 +74,26 @@ descendants() {  # every process below $1, depth first
     descendants "$child"
   done
 }
-xvfb_run_pid="" xvfb_sleep_pid=""
-stop() {  # SIGINT lets roslaunch stop its nodes (which it puts in their own sessions)
-  local pid="$1" family i
-  family="$pid $(descendants "$pid" | tr '\n' ' ')"
-  if [ "$pid" = "$xvfb_run_pid" ] && [ -n "$xvfb_sleep_pid" ]; then
-    kill -TERM "$xvfb_sleep_pid" 2>/dev/null || true
-  else
-    kill -INT "$pid" 2>/dev/null || return 0
-  fi
+xvfb_run_pid=""
+stop() {
+  # roslaunch (and roscore) get SIGINT, which makes them stop their nodes, which they keep in
+  # sessions of their own. xvfb-run's children get SIGTERM, again and again in case it was still
+  # starting one, so that xvfb-run itself ends normally and removes its cookie file. Whatever is
+  # left after 10 s is killed.
+  local pid="$1" i child
+  [ "$pid" = "$xvfb_run_pid" ] || kill -INT "$pid" 2>/dev/null
   for i in $(seq 50); do
     kill -0 "$pid" 2>/dev/null || break
+    if [ "$pid" = "$xvfb_run_pid" ]; then
+      for child in $(descendants "$pid"); do kill -TERM "$child" 2>/dev/null; done
+    fi
     sleep 0.2
   done
-  # shellcheck disable=SC2086
-  kill -KILL $family 2>/dev/null || true
+  for child in "$pid" $(descendants "$pid"); do kill -KILL "$child" 2>/dev/null; done
   wait "$pid" 2>/dev/null || true
 }
 cleanup() {
+  set +e  # a process that is already gone must not end the clean-up half way
   local i
   for ((i = ${#started[@]} - 1; i >= 0; i--)); do stop "${started[i]}"; done
   rm -rf "$tmp"
@@ -129,12 +134,12 @@ wait_for "ROS master on port $port" "$tmp/roscore.log" rosparam get /run_id
 # A virtual screen; xvfb-run stays up as long as the sleep it runs, and ending that sleep lets
 # xvfb-run stop Xvfb and remove its cookie file.
 xvfb-run -a -s "-screen 0 ${SCREEN_WIDTH}x${SCREEN_HEIGHT}x24 -nolisten tcp" \
-  bash -c 'echo "$DISPLAY $XAUTHORITY $$" >"$1.part" && mv "$1.part" "$1" && exec sleep 100000' \
+  bash -c 'echo "$DISPLAY $XAUTHORITY" >"$1.part" && mv "$1.part" "$1" && exec sleep 100000' \
   _ "$tmp/display" >"$tmp/xvfb.log" 2>&1 &
 xvfb_run_pid=$!
 started+=("$xvfb_run_pid")
 wait_for "virtual X screen" "$tmp/xvfb.log" test -s "$tmp/display"
-read -r DISPLAY XAUTHORITY xvfb_sleep_pid <"$tmp/display"
+read -r DISPLAY XAUTHORITY <"$tmp/display"
 export DISPLAY XAUTHORITY
 
 launch_log="$tmp/launch.log"

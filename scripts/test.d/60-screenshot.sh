@@ -4,7 +4,7 @@
 # scripts/check_screenshot.py asserts that the 3D view shows the marker colours of every body
 # state, contact points and normals (scaled by impulse) and joints, not just the empty grid. A broken RViz config,
 # launch file or marker code fails it. JUnit XML: one case per plane for the run, one per colour.
-# Bound: 2 x 75 s (typically 2 x 20 s).
+# Bound: 2 x (50 s + 8 s to clean up) < 2 min; typically 2 x 20 s.
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 export PATH="/usr/bin:$PATH"
@@ -29,7 +29,7 @@ PY
 check_plane() {  # check_plane PLANE SCENE COLOURS
   local plane="$1" scene="$2" colours="$3" suite="screenshot_$1" started=$SECONDS log
   log="$shots/$plane.log"
-  if timeout -k 5 75 "$REPO/scripts/screenshot.sh" "$shots/$plane.png" "$scene" --plane "$plane" >"$log" 2>&1; then
+  if timeout -k 8 50 "$REPO/scripts/screenshot.sh" "$shots/$plane.png" "$scene" --plane "$plane" >"$log" 2>&1; then
     junit_case "$results/${suite}_run.xml" "$suite" run
     echo "$plane: screenshot in $((SECONDS - started)) s: $(tail -n 1 "$log")"
     python3 "$REPO/scripts/check_screenshot.py" "$shots/$plane.png" --expect "$colours" \
