@@ -5,8 +5,10 @@
 
 Finds the 3D view (the columns and rows mostly of the RViz configs' background colour), counts
 the pixels of each marker colour in it (by hue, since RViz shades and antialiases the lines) and
-fails unless every expected colour covers at least MIN_PIXELS. Writes one JUnit test case per
-expected colour with --junit. Exit 0 when all are present, 1 when one is missing, 2 on bad input.
+fails unless every expected colour covers at least MIN_PIXELS, and unless the markers spread over
+at least MIN_SPREAD of the view's width and height (a view that looks at the plane edge-on
+squeezes them into a line). Writes one JUnit test case per expected colour, and one for the
+spread, with --junit. Exit 0 when all are present, 1 when one is missing, 2 on bad input.
 """
 import argparse
 import colorsys
@@ -16,6 +18,7 @@ import xml.etree.ElementTree as ET
 from PIL import Image
 
 VIEW_BACKGROUND = (48, 48, 48)  # Global Options / Background Color in rviz/impulse2d_*.rviz
+MIN_SPREAD = 0.2  # the scenes' bodies span most of the view in both directions
 MIN_PIXELS = 40  # true marker colours cover hundreds; antialiased mixes of others a few dozen at most
 
 # The colours of src/ros/markers.cpp, as hue ranges in degrees (saturated pixels only), and the
@@ -74,6 +77,22 @@ def count_colours(image, box):
     return counts
 
 
+def marker_spread(image, box):
+    """Width and height of the box around every marker-coloured pixel, as fractions of the view."""
+    view = image.crop(box)
+    pixels = view.load()
+    width, height = view.size
+    xs, ys = [], []
+    for y in range(height):
+        for x in range(width):
+            if classify(pixels[x, y]):
+                xs.append(x)
+                ys.append(y)
+    if not xs:
+        return 0.0, 0.0
+    return (max(xs) - min(xs) + 1) / width, (max(ys) - min(ys) + 1) / height
+
+
 def write_junit(path, suite, cases):
     root = ET.Element("testsuite", name=suite, tests=str(len(cases)),
                       failures=str(sum(1 for _, failure in cases if failure)))
@@ -106,7 +125,7 @@ def main():
     if box is None:
         failure = "no 3D view (no area of the background colour %s) in %s" % (
             VIEW_BACKGROUND, args.shot)
-        cases = [(c, failure) for c in expected]
+        cases = [(c, failure) for c in expected + ["spread"]]
     else:
         counts = count_colours(image, box)
         print("%s: 3D view %dx%d+%d+%d; pixels: %s" % (
@@ -115,6 +134,13 @@ def main():
         cases = [(c, None if counts[c] >= MIN_PIXELS else
                   "%s markers: %d pixels in the 3D view, expected >= %d" % (c, counts[c], MIN_PIXELS))
                  for c in expected]
+        spread = marker_spread(image, box)
+        print("%s: markers span %.0f%% x %.0f%% of the view" % (
+            args.shot, 100 * spread[0], 100 * spread[1]))
+        cases.append(("spread", None if min(spread) >= MIN_SPREAD else
+                      "the markers span %.0f%% x %.0f%% of the view, expected >= %.0f%% each "
+                      "(is the view looking at the plane?)" % (
+                          100 * spread[0], 100 * spread[1], 100 * MIN_SPREAD)))
     for _, failure in cases:
         if failure:
             print("check_screenshot: FAILED: " + failure, file=sys.stderr)

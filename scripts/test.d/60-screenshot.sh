@@ -2,8 +2,10 @@
 # RViz end to end, both planes: scripts/screenshot.sh runs the node and RViz (under Xvfb) on the
 # demo scene (side view, xz) and on config/topdown.yaml (top-down, xy), and
 # scripts/check_screenshot.py asserts that the 3D view shows the marker colours of every body
-# state, contact points and normals (scaled by impulse) and joints, not just the empty grid. A broken RViz config,
-# launch file or marker code fails it. JUnit XML: one case per plane for the run, one per colour.
+# state, contact points, normals and joints, spread over the view (not the empty grid, not the
+# plane seen edge-on). A broken RViz config (a wrong topic, a namespace off, a view that misses
+# the plane), launch file or marker code fails it. JUnit XML: one case per plane for the run,
+# one per colour and one for the spread.
 # Bound: 2 x (50 s + 8 s to clean up) < 2 min; typically 2 x 20 s.
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
