@@ -77,15 +77,18 @@ descendants() {  # every process below $1, depth first
 xvfb_run_pid=""
 stop() {
   # roslaunch (and roscore) get SIGINT, which makes them stop their nodes, which they keep in
-  # sessions of their own. xvfb-run's children get SIGTERM, again and again in case it was still
-  # starting one, so that xvfb-run itself ends normally and removes its cookie file. Whatever is
-  # left after 10 s is killed.
+  # sessions of their own. xvfb-run's command (the sleep) gets SIGTERM, again until it is there
+  # in case xvfb-run was still starting, so that xvfb-run ends normally: it stops Xvfb and removes
+  # its cookie file (its own clean-up commands must not be signalled). Whatever is left after
+  # 10 s is killed.
   local pid="$1" i child
   [ "$pid" = "$xvfb_run_pid" ] || kill -INT "$pid" 2>/dev/null
   for i in $(seq 50); do
     kill -0 "$pid" 2>/dev/null || break
     if [ "$pid" = "$xvfb_run_pid" ]; then
-      for child in $(descendants "$pid"); do kill -TERM "$child" 2>/dev/null; done
+      for child in $(ps -o pid= -o comm= --ppid "$pid" | awk '$2 == "sleep" { print $1 }'); do
+        kill -TERM "$child" 2>/dev/null
+      done
     fi
     sleep 0.2
   done
