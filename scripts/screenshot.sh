@@ -77,8 +77,8 @@ descendants() {  # every process below $1, depth first
 xvfb_run_pid=""
 stop() {
   # roslaunch (and roscore) get SIGINT, which makes them stop their nodes, which they keep in
-  # sessions of their own. xvfb-run's command (the sleep) gets SIGTERM, again until it is there
-  # in case xvfb-run was still starting, so that xvfb-run ends normally: it stops Xvfb and removes
+  # sessions of their own. xvfb-run's command (the sleep) is killed, again until it is there in
+  # case xvfb-run was still starting, so that xvfb-run ends normally: it stops Xvfb and removes
   # its cookie file (its own clean-up commands must not be signalled). Whatever is left after
   # 10 s is killed.
   local pid="$1" i child
@@ -87,7 +87,7 @@ stop() {
     kill -0 "$pid" 2>/dev/null || break
     if [ "$pid" = "$xvfb_run_pid" ]; then
       for child in $(ps -o pid= -o comm= --ppid "$pid" | awk '$2 == "sleep" { print $1 }'); do
-        kill -TERM "$child" 2>/dev/null
+        kill -KILL "$child" 2>/dev/null
       done
     fi
     sleep 0.2
@@ -135,10 +135,12 @@ started+=($!)
 wait_for "ROS master on port $port" "$tmp/roscore.log" rosparam get /run_id
 
 # A virtual screen; xvfb-run stays up as long as the sleep it runs, and ending that sleep lets
-# xvfb-run stop Xvfb and remove its cookie file.
-xvfb-run -a -s "-screen 0 ${SCREEN_WIDTH}x${SCREEN_HEIGHT}x24 -nolisten tcp" \
+# xvfb-run stop Xvfb and remove its cookie file. xvfb-run (a POSIX shell script) would die of a
+# SIGTERM sent to our whole process group (as `timeout` does) without removing it, so it and its
+# sleep ignore SIGTERM; stop() kills the sleep.
+(trap '' TERM; exec xvfb-run -a -s "-screen 0 ${SCREEN_WIDTH}x${SCREEN_HEIGHT}x24 -nolisten tcp" \
   bash -c 'echo "$DISPLAY $XAUTHORITY" >"$1.part" && mv "$1.part" "$1" && exec sleep 100000' \
-  _ "$tmp/display" >"$tmp/xvfb.log" 2>&1 &
+  _ "$tmp/display" >"$tmp/xvfb.log" 2>&1) &
 xvfb_run_pid=$!
 started+=("$xvfb_run_pid")
 wait_for "virtual X screen" "$tmp/xvfb.log" test -s "$tmp/display"
