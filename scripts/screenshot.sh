@@ -136,9 +136,9 @@ wait_for "ROS master on port $port" "$tmp/roscore.log" rosparam get /run_id
 
 # A virtual screen; xvfb-run stays up as long as the sleep it runs, and ending that sleep lets
 # xvfb-run stop Xvfb and remove its cookie file. xvfb-run (a POSIX shell script) would die of a
-# SIGTERM sent to our whole process group (as `timeout` does) without removing it, so it and its
-# sleep ignore SIGTERM; stop() kills the sleep.
-(trap '' TERM; exec xvfb-run -a -s "-screen 0 ${SCREEN_WIDTH}x${SCREEN_HEIGHT}x24 -nolisten tcp" \
+# signal sent to our whole process group (Ctrl-C, `timeout`) without removing it, so it and its
+# sleep ignore them; stop() kills the sleep.
+(trap '' INT TERM HUP; exec xvfb-run -a -s "-screen 0 ${SCREEN_WIDTH}x${SCREEN_HEIGHT}x24 -nolisten tcp" \
   bash -c 'echo "$DISPLAY $XAUTHORITY" >"$1.part" && mv "$1.part" "$1" && exec sleep 100000' \
   _ "$tmp/display" >"$tmp/xvfb.log" 2>&1) &
 xvfb_run_pid=$!
