@@ -1,18 +1,18 @@
 # The catkin side: dependencies, message generation and the package declaration.
-set(IMPULSE2D_ROS_DEPENDS
-  roscpp nodelet pluginlib std_msgs std_srvs geometry_msgs sensor_msgs visualization_msgs
-  rosgraph_msgs tf2_msgs tf2_ros diagnostic_updater)
-find_package(catkin REQUIRED COMPONENTS message_generation ${IMPULSE2D_ROS_DEPENDS})
+find_package(catkin REQUIRED COMPONENTS
+  diagnostic_updater geometry_msgs message_generation nodelet pluginlib roscpp rosgraph_msgs
+  sensor_msgs std_msgs std_srvs tf2_msgs tf2_ros visualization_msgs)
 
 add_message_files(DIRECTORY msg FILES
-  Shape.msg Body.msg Joint.msg Contact.msg ContactArray.msg)
+  Body.msg Contact.msg ContactArray.msg Joint.msg Shape.msg)
 add_service_files(DIRECTORY srv FILES
-  SpawnBody.srv DeleteBody.srv CreateJoint.srv DeleteJoint.srv SpawnUrdf.srv LoadScene.srv
-  ApplyWrench.srv SetBodyState.srv GetBodyState.srv Step.srv)
-generate_messages(DEPENDENCIES std_msgs geometry_msgs)
+  ApplyWrench.srv CreateJoint.srv DeleteBody.srv DeleteJoint.srv GetBodyState.srv LoadScene.srv
+  SetBodyState.srv SpawnBody.srv SpawnUrdf.srv Step.srv)
+generate_messages(DEPENDENCIES geometry_msgs std_msgs)
 
 catkin_package(
   INCLUDE_DIRS include
   LIBRARIES impulse2d_core impulse2d_scene
-  CATKIN_DEPENDS message_runtime std_msgs geometry_msgs
+  CATKIN_DEPENDS geometry_msgs message_runtime nodelet roscpp rosgraph_msgs sensor_msgs std_msgs
+    std_srvs visualization_msgs
 )

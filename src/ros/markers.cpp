@@ -10,9 +10,9 @@ namespace {
 
 using visualization_msgs::Marker;
 
-constexpr double kLineWidth = 0.03;  // m
+constexpr double kLineWidth = 0.04;  // m: about two pixels with the RViz configs' views
 constexpr int kCircleSegments = 32;
-constexpr double kNormalBase = 0.05;  // m, so that light contacts still show
+constexpr double kNormalBase = 0.1;  // m, so that light contacts still show
 constexpr double kNormalMetresPerNewton = 0.01;
 constexpr double kNormalMax = 1.0;  // m
 
@@ -87,7 +87,7 @@ void addBodies(const MarkerInput& in, visualization_msgs::MarkerArray* out) {
 void addContacts(const MarkerInput& in, visualization_msgs::MarkerArray* out) {
   if (in.contacts.empty()) return;
   Marker points = makeMarker(in, "contact_points", 0, Marker::SPHERE_LIST);
-  points.scale.x = points.scale.y = points.scale.z = 0.06;
+  points.scale.x = points.scale.y = points.scale.z = 0.12;
   points.color = rgba(1.0f, 0.2f, 0.2f);
   Marker normals = makeMarker(in, "contact_normals", 0, Marker::LINE_LIST);
   normals.color = rgba(1.0f, 0.9f, 0.2f);
@@ -106,7 +106,7 @@ void addJoints(const MarkerInput& in, visualization_msgs::MarkerArray* out) {
   Marker lines = makeMarker(in, "joints", 0, Marker::LINE_LIST);
   lines.color = rgba(0.9f, 0.3f, 0.9f);
   Marker anchors = makeMarker(in, "joint_anchors", 0, Marker::SPHERE_LIST);
-  anchors.scale.x = anchors.scale.y = anchors.scale.z = 0.08;
+  anchors.scale.x = anchors.scale.y = anchors.scale.z = 0.15;
   anchors.color = lines.color;
   for (const JointSnapshot& j : in.joints) {
     addSegment(in.plane, j.originA, j.anchorA, &lines);

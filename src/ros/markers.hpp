@@ -26,7 +26,7 @@ struct MarkerInput {
 /// Starts with a DELETEALL so bodies that are gone vanish, then one marker per body in
 /// namespace "bodies" (LINE_LIST, id = body slot; grey static, orange kinematic, green awake,
 /// blue asleep), its name in "names" (TEXT_VIEW_FACING), contact points in "contact_points"
-/// (SPHERE_LIST), contact normals in "contact_normals" (LINE_LIST, 0.05 m + 1 cm per newton of
+/// (SPHERE_LIST), contact normals in "contact_normals" (LINE_LIST, 0.1 m + 1 cm per newton of
 /// normal force, at most 1 m) and joints in "joints" (LINE_LIST) and "joint_anchors" (SPHERE_LIST).
 visualization_msgs::MarkerArray buildMarkers(const MarkerInput& in);
 
