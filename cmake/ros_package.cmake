@@ -9,10 +9,13 @@ add_message_files(DIRECTORY msg FILES
 add_service_files(DIRECTORY srv FILES
   SpawnBody.srv DeleteBody.srv CreateJoint.srv DeleteJoint.srv SpawnUrdf.srv LoadScene.srv
   ApplyWrench.srv SetBodyState.srv GetBodyState.srv Step.srv)
+# URDF joints (cmake/urdf.cmake): commands to a joint motor.
+add_message_files(DIRECTORY msg FILES JointCommand.msg)
+add_service_files(DIRECTORY srv FILES SetJointMotor.srv)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs)
 
 catkin_package(
   INCLUDE_DIRS include
-  LIBRARIES impulse2d_core impulse2d_scene
+  LIBRARIES impulse2d_core impulse2d_scene impulse2d_urdf
   CATKIN_DEPENDS message_runtime std_msgs geometry_msgs
 )

@@ -26,14 +26,14 @@ if(NOT IMPULSE2D_CORE_ONLY)
   install(TARGETS impulse2d_urdf
     ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
     LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
-  install(DIRECTORY test/urdf/ DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/urdf
-    FILES_MATCHING PATTERN "*.urdf" PATTERN "broken" EXCLUDE)
+  # The demo arm lives with the fixtures; installed at the same relative path for the launch file.
+  install(FILES test/urdf/two_link_arm.urdf
+    DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/test/urdf)
 
   if(CATKIN_ENABLE_TESTING)
-    add_rostest_gtest(impulse2d_urdf_tests test/ros/urdf.test test/ros/urdf_test.cpp)
+    add_rostest_gtest(impulse2d_urdf_tests test/ros/urdf.test test/ros/urdf_test.cpp
+      test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
     target_link_libraries(impulse2d_urdf_tests ${catkin_LIBRARIES})
-    target_compile_definitions(impulse2d_urdf_tests PRIVATE
-      IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
     add_dependencies(impulse2d_urdf_tests impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
     roslaunch_add_file_check(launch/urdf_demo.launch rviz:=false)
   endif()
