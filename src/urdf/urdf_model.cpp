@@ -334,6 +334,7 @@ bool parseUrdf(const std::string& urdfXml, const UrdfPlacement& placement, UrdfM
   }
   if (why.empty()) {
     const urdf::ModelInterfaceSharedPtr model = parseUrdfText(urdfXml, &why);
+    const ModelReleaser releaser(model);
     if (model) {
       out->scene.plane = placement.plane;
       why = Projector(*model, plane, placement, out).run();

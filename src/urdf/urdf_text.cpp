@@ -1,11 +1,18 @@
 // Parsing URDF text with urdfdom, keeping its log messages for the error we return.
 #include "urdf_text.hpp"
 
+#include "link_geometry.hpp"
+
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <tinyxml.h>
+
 #include <exception>
+#include <map>
 #include <mutex>
+#include <string>
+#include <vector>
 
 namespace impulse2d {
 namespace urdf_detail {
@@ -29,6 +36,52 @@ std::mutex& handlerMutex() {
   return mutex;
 }
 
+std::string quoted(const char* text) { return quotedName(text ? text : ""); }
+
+// urdfdom links a joint's child into its parent's child list before it looks for loops, so a
+// loop of joints becomes a shared_ptr cycle that leaks even when urdfdom refuses the model.
+// Refused here first. Bad XML is left to urdfdom, which words it.
+std::string findJointLoop(const std::string& xml) {
+  TiXmlDocument document;
+  document.Parse(xml.c_str());
+  const TiXmlElement* robot = document.Error() ? nullptr : document.FirstChildElement("robot");
+  if (robot == nullptr) return "";
+  std::map<std::string, std::string> parentOf, jointOf;  // child link -> parent link, joint
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint != nullptr;
+       joint = joint->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = joint->FirstChildElement("parent");
+    const TiXmlElement* child = joint->FirstChildElement("child");
+    const char* parentLink = parent ? parent->Attribute("link") : nullptr;
+    const char* childLink = child ? child->Attribute("link") : nullptr;
+    if (parentLink == nullptr || childLink == nullptr) continue;  // urdfdom refuses those
+    if (parentOf.count(childLink)) {
+      return "link " + quoted(childLink) + " is the child of two joints, " +
+             quoted(jointOf[childLink].c_str()) + " and " + quoted(joint->Attribute("name"));
+    }
+    parentOf[childLink] = parentLink;
+    jointOf[childLink] = joint->Attribute("name") ? joint->Attribute("name") : "";
+  }
+  // Each link has at most one parent, so following parents either ends or runs in a circle.
+  std::map<std::string, int> state;  // 1: on the current path, 2: known to end
+  for (const auto& start : parentOf) {
+    std::vector<std::string> path;
+    std::string at = start.first;
+    while (state[at] == 0) {
+      state[at] = 1;
+      path.push_back(at);
+      const auto up = parentOf.find(at);
+      if (up == parentOf.end()) break;
+      at = up->second;
+    }
+    if (state[at] == 1 && parentOf.count(at)) {
+      return "joint " + quoted(jointOf[at].c_str()) + ": the joints form a loop through link " +
+             quoted(at.c_str());
+    }
+    for (const std::string& link : path) state[link] = 2;
+  }
+  return "";
+}
+
 }  // namespace
 
 urdf::ModelInterfaceSharedPtr parseUrdfText(const std::string& xml, std::string* error) {
@@ -42,6 +95,11 @@ urdf::ModelInterfaceSharedPtr parseUrdfText(const std::string& xml, std::string*
   }
   if (xml.find('\0') != std::string::npos) {
     *error = "urdf_xml: contains a NUL byte";
+    return nullptr;
+  }
+  const std::string loop = findJointLoop(xml);
+  if (!loop.empty()) {
+    *error = "urdf_xml: " + loop;
     return nullptr;
   }
   CapturingHandler capture;
@@ -64,6 +122,15 @@ urdf::ModelInterfaceSharedPtr parseUrdfText(const std::string& xml, std::string*
     *error = "urdf_xml: not a valid URDF: " + (why.empty() ? std::string("bad XML") : why);
   }
   return model;
+}
+
+ModelReleaser::~ModelReleaser() {
+  if (!model_) return;
+  for (auto& entry : model_->links_) {
+    if (!entry.second) continue;
+    entry.second->child_links.clear();
+    entry.second->child_joints.clear();
+  }
 }
 
 }  // namespace urdf_detail

@@ -416,6 +416,18 @@ TEST(Urdf, RefusalsNameTheElement) {
             std::string(kBoxLink)));
   EXPECT_TRUE(contains(fromWorld, "joint 'pin'")) << fromWorld;
 
+  const std::string selfLoop = refusal(
+      robot(std::string(kBoxLink) +
+            "<joint name=\"again\" type=\"fixed\"><parent link=\"base\"/><child link=\"base\"/>"
+            "</joint>"));
+  EXPECT_TRUE(contains(selfLoop, "joint 'again'") && contains(selfLoop, "loop")) << selfLoop;
+  const std::string loop = refusal(
+      robot(std::string(kBoxLink) + "<link name=\"other\"/>" +
+            "<joint name=\"there\" type=\"fixed\"><parent link=\"base\"/><child link=\"other\"/>"
+            "</joint><joint name=\"back\" type=\"fixed\"><parent link=\"other\"/>"
+            "<child link=\"base\"/></joint>"));
+  EXPECT_TRUE(contains(loop, "loop through link")) << loop;
+
   const std::string noBodies = refusal(robot("<link name=\"empty\"/>"));
   EXPECT_TRUE(contains(noBodies, "no link with collision geometry")) << noBodies;
 
