@@ -94,7 +94,9 @@ std::vector<JointReading> SimWorld::urdfJointStates() const {
     // A deleted joint (or body) leaves an invalid id behind; its slot's new joint is another.
     if (!world_->isValid(joint.id)) continue;
     const JointState state = world_->jointState(joint.id);
-    out.push_back({joint.name, joint.sign * state.position, joint.sign * state.velocity});
+    // Adding 0.0 turns a -0.0 (a resting joint with sign -1) into 0.0 for readers.
+    out.push_back(
+        {joint.name, joint.sign * state.position + 0.0, joint.sign * state.velocity + 0.0});
   }
   return out;
 }
