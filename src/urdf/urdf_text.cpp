@@ -8,6 +8,7 @@
 
 #include <tinyxml.h>
 
+#include <algorithm>
 #include <exception>
 #include <map>
 #include <mutex>
@@ -34,6 +35,27 @@ class CapturingHandler : public console_bridge::OutputHandler {
 std::mutex& handlerMutex() {
   static std::mutex mutex;
   return mutex;
+}
+
+// TinyXML parses nested elements recursively: a hostile document nested a million deep would
+// overflow the stack. URDF nests about five deep.
+constexpr int kMaxNesting = 100;
+
+// An upper bound on the element nesting (a '<' inside a comment or CDATA section may count).
+int nestingDepth(const std::string& xml) {
+  int depth = 0, deepest = 0;
+  for (size_t i = 0; i + 1 < xml.size(); ++i) {
+    if (xml[i] != '<') continue;
+    const char next = xml[i + 1];
+    if (next == '/') {
+      --depth;
+    } else if (next != '!' && next != '?') {
+      deepest = std::max(deepest, ++depth);
+      const size_t close = xml.find('>', i);
+      if (close != std::string::npos && close > i && xml[close - 1] == '/') --depth;
+    }
+  }
+  return deepest;
 }
 
 std::string quoted(const char* text) { return quotedName(text ? text : ""); }
@@ -95,6 +117,10 @@ urdf::ModelInterfaceSharedPtr parseUrdfText(const std::string& xml, std::string*
   }
   if (xml.find('\0') != std::string::npos) {
     *error = "urdf_xml: contains a NUL byte";
+    return nullptr;
+  }
+  if (nestingDepth(xml) > kMaxNesting) {
+    *error = "urdf_xml: elements nested deeper than " + std::to_string(kMaxNesting);
     return nullptr;
   }
   const std::string loop = findJointLoop(xml);

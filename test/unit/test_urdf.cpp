@@ -416,6 +416,10 @@ TEST(Urdf, RefusalsNameTheElement) {
             std::string(kBoxLink)));
   EXPECT_TRUE(contains(fromWorld, "joint 'pin'")) << fromWorld;
 
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  EXPECT_TRUE(contains(refusal(robot(deep)), "nested deeper")) << "deep nesting";
+
   const std::string selfLoop = refusal(
       robot(std::string(kBoxLink) +
             "<joint name=\"again\" type=\"fixed\"><parent link=\"base\"/><child link=\"base\"/>"
