@@ -136,10 +136,10 @@ class Projector {
   std::string visit(const Pending& at, std::vector<Pending>* stack) {
     const urdf::Link& link = *at.link;
     Group& group = groups_[at.group];
-    const Eigen::Isometry3d linkInBody = group.pose.inverse() * at.pose;
+    // A group's top link is visited before the links fixed to it, so its pose is known here.
     if (at.link == group.top) group.pose = at.pose;
     const Eigen::Isometry3d inBody =
-        at.link == group.top ? Eigen::Isometry3d::Identity() : linkInBody;
+        at.link == group.top ? Eigen::Isometry3d::Identity() : group.pose.inverse() * at.pose;
     std::string why = addCollisionShapes(plane_, link, inBody, &group.shapes, &out_->warnings);
     if (why.empty() && group.type == BodyType::Dynamic) {
       why = addInertial(plane_, link, inBody, &group.mass);
