@@ -139,6 +139,12 @@ struct BodyDef {
   double angularDamping = 0.0;   ///< 1/s
   bool bullet = false;           ///< continuous collision against every body, not only static ones
   double mass = 0.0;  ///< kg; > 0 overrides the shapes' densities (inertia scales with it)
+  /// kg m^2 about the centre of mass; > 0 overrides what the shapes give (e.g. a URDF inertial).
+  double inertia = 0.0;
+  /// When set, the centre of mass is `localCenter` (body frame) instead of the shapes' centroid;
+  /// without an `inertia` the shapes' inertia is moved there by the parallel axis theorem.
+  bool useLocalCenter = false;
+  Vec2 localCenter = Vec2::Zero();
   std::vector<ShapeDef> shapes;
 };
 

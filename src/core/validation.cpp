@@ -129,6 +129,10 @@ std::string World::validate(const BodyDef& def) {
   if (!finiteNonNegative(def.linearDamping)) return "linear_damping: must be finite and >= 0";
   if (!finiteNonNegative(def.angularDamping)) return "angular_damping: must be finite and >= 0";
   if (!finiteNonNegative(def.mass)) return "mass: must be finite and >= 0";
+  if (!finiteNonNegative(def.inertia)) return "inertia: must be finite and >= 0";
+  if (def.useLocalCenter && !withinWorld(def.localCenter)) {
+    return "local_center: must be finite and within 1e6 m of the body origin";
+  }
   if (def.shapes.empty()) return "shapes: a body needs at least one shape";
   if (def.shapes.size() > kMaxShapesPerBody) {
     return "shapes: at most " + std::to_string(kMaxShapesPerBody) + " shapes per body";

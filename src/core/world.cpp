@@ -132,6 +132,11 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
       total.inertia *= def.mass / total.mass;
       total.mass = def.mass;
     }
+    if (def.useLocalCenter) {
+      total.inertia += total.mass * (def.localCenter - total.center).squaredNorm();
+      total.center = def.localCenter;
+    }
+    if (def.inertia > 0.0) total.inertia = def.inertia;
   }
 
   const int slot = w.bodies.acquire();

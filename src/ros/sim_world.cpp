@@ -49,16 +49,20 @@ void SimWorld::restoreStart() {
   frameId_ = "world";
   plane_ = "xz";
   wrenches_.clear();
+  urdfJoints_.clear();
   ++staticVersion_;
-  if (startYaml_.empty()) return;
-  // The start scene was checked when it was loaded, so this cannot fail.
-  Scene scene;
-  std::string error;
-  if (!parseScene(startYaml_, &scene, &error)) return;
-  world_ = std::make_unique<World>(scene.world);
-  frameId_ = scene.frameId;
-  plane_ = scene.plane;
-  impulse2d::addScene(scene, *world_, &error);
+  if (!startYaml_.empty()) {
+    // The start scene was checked when it was loaded, so this cannot fail.
+    Scene scene;
+    std::string error;
+    if (parseScene(startYaml_, &scene, &error)) {
+      world_ = std::make_unique<World>(scene.world);
+      frameId_ = scene.frameId;
+      plane_ = scene.plane;
+      impulse2d::addScene(scene, *world_, &error);
+    }
+  }
+  respawnStartUrdfs();
 }
 
 void SimWorld::reset() { restoreStart(); }

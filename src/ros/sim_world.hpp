@@ -59,6 +59,24 @@ struct JointSnapshot {
   Vec2 anchorB = Vec2::Zero();
 };
 
+/// A URDF model's revolute or prismatic joint as joint_states reports it (URDF convention).
+struct JointReading {
+  std::string name;  ///< "model_name/joint"
+  double position = 0.0;
+  double velocity = 0.0;
+};
+
+/// What ~spawn_urdf asks for and answers (sim_world_urdf.cpp).
+struct UrdfRequest {
+  std::string modelName;
+  std::string xml;
+  Vec2 position = Vec2::Zero();
+  double angle = 0.0;
+};
+struct UrdfSpawned {
+  std::vector<std::string> bodies, joints, warnings;
+};
+
 /// Not thread-safe: the node serialises every call with its own mutex.
 /// Every mutating call either succeeds or leaves the world unchanged and sets `error` to one
 /// line naming the request field.
@@ -92,6 +110,16 @@ class SimWorld {
                     const Vec2& linearVelocity, double angularVelocity, std::string* error);
   bool getBodyState(const std::string& name, BodySnapshot* out, std::string* error) const;
 
+  // URDF models (sim_world_urdf.cpp). A model spawned with `atStart` is part of the start state
+  // that reset() restores.
+  bool spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* out, std::string* error);
+  /// Motor of a revolute or prismatic joint: target speed (rad/s or m/s) and max effort (N m or
+  /// N). For URDF joints both are in the URDF's sense, max_effort 0 means the URDF effort limit,
+  /// and the URDF velocity and effort limits clamp them. `release` switches the motor off.
+  bool setJointMotor(const std::string& name, double speed, double maxEffort, bool release,
+                     std::string* error);
+  std::vector<JointReading> urdfJointStates() const;
+
   /// One fixed step, with the wrenches that are due.
   void step();
   uint64_t stepCount() const { return steps_; }
@@ -120,12 +148,23 @@ class SimWorld {
     uint64_t stepsLeft = 0;
   };
   void restoreStart();
+  /// A URDF joint in the world with what converts between the URDF's and the world's sense.
+  struct UrdfJoint {
+    JointId id;
+    std::string name;
+    double sign = 1.0;
+    double maxEffort = 0.0;
+    double maxVelocity = 0.0;
+  };
+  void respawnStartUrdfs();
 
   std::unique_ptr<World> world_;
   std::string startYaml_;  ///< empty when the start scene was missing or bad
   std::string frameId_ = "world";
   std::string plane_ = "xz";
   std::vector<Wrench> wrenches_;
+  std::vector<UrdfJoint> urdfJoints_;
+  std::vector<UrdfRequest> startUrdfs_;
   uint64_t steps_ = 0;
   int64_t simTimeNs_ = 0;
   uint64_t staticVersion_ = 0;

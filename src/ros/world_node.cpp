@@ -39,6 +39,7 @@ WorldNode::Lock::~Lock() { node_.mutex_.unlock(); }
 WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, const std::string& name)
     : nh_(nh), pnh_(pnh), name_(name) {
   loadStartScene();
+  loadStartUrdf();
   readParams();
   restartSchedule();
   statsStart_ = ros::WallTime::now();
@@ -62,6 +63,7 @@ WorldNode::~WorldNode() {
   stepTimer_.stop();
   publishTimer_.stop();
   for (ros::ServiceServer& s : services_) s.shutdown();
+  jointCommandSub_.shutdown();
 }
 
 void WorldNode::loadStartScene() {

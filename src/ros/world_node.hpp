@@ -10,9 +10,12 @@
 #include <impulse2d/DeleteBody.h>
 #include <impulse2d/DeleteJoint.h>
 #include <impulse2d/GetBodyState.h>
+#include <impulse2d/JointCommand.h>
 #include <impulse2d/LoadScene.h>
 #include <impulse2d/SetBodyState.h>
+#include <impulse2d/SetJointMotor.h>
 #include <impulse2d/SpawnBody.h>
+#include <impulse2d/SpawnUrdf.h>
 #include <impulse2d/Step.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
@@ -79,6 +82,14 @@ class WorldNode {
   bool unpause(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
   bool reset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
 
+  // URDF models, joint_states and joint motors (urdf_services.cpp).
+  void loadStartUrdf();
+  void advertiseUrdf();
+  bool spawnUrdf(SpawnUrdf::Request& req, SpawnUrdf::Response& res);
+  bool setJointMotor(SetJointMotor::Request& req, SetJointMotor::Response& res);
+  void onJointCommand(const JointCommand::ConstPtr& command);
+  void publishJointStates(const ros::Time& stamp, const std::vector<JointReading>& joints);
+
   ros::NodeHandle nh_, pnh_;
   std::string name_;
 
@@ -112,6 +123,8 @@ class WorldNode {
   ros::Time lastTfStamp_;
 
   ros::Publisher tfPub_, tfStaticPub_, clockPub_, contactsPub_, markersPub_;
+  ros::Publisher jointStatesPub_;
+  ros::Subscriber jointCommandSub_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   std::vector<ros::ServiceServer> services_;
   ros::WallTimer stepTimer_, publishTimer_;

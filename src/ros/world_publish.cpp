@@ -31,6 +31,7 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
   std::vector<ContactSnapshot> contacts;
   uint64_t staticVersion = 0;
   int64_t simTimeNs = 0;
+  std::vector<JointReading> jointReadings;
   {
     Lock lock(*this);
     simTimeNs = sim_.simTimeNs();
@@ -42,6 +43,7 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
     if (wantContacts || wantMarkers) contacts = sim_.contacts();
     if (wantMarkers) scene.joints = sim_.joints();
     staticVersion = sim_.staticVersion();
+    jointReadings = sim_.urdfJointStates();
   }
 
   if (publishClock_) publishClock(simTimeNs);
@@ -69,6 +71,8 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
     staticPublished_ = true;
     publishedStaticVersion_ = staticVersion;
   }
+
+  publishJointStates(scene.stamp, jointReadings);
 
   if (wantContacts) {
     impulse2d::ContactArray msg;

@@ -46,6 +46,7 @@ void WorldNode::advertiseServices() {
   services_.push_back(pnh_.advertiseService("pause", &WorldNode::pause, this));
   services_.push_back(pnh_.advertiseService("unpause", &WorldNode::unpause, this));
   services_.push_back(pnh_.advertiseService("reset", &WorldNode::reset, this));
+  advertiseUrdf();
 }
 
 bool WorldNode::spawnBody(SpawnBody::Request& req, SpawnBody::Response& res) {

@@ -1,0 +1,47 @@
+// URDF robot descriptions projected onto the world's plane, as a Scene that addScene() adds
+// all or nothing. ROS-free: urdfdom parses the text, and no file is ever read (meshes are
+// skipped, not loaded). README "URDF" documents the mapping.
+#pragma once
+
+#include <impulse2d/defs.hpp>
+#include <impulse2d/scene.hpp>
+
+#include <string>
+#include <vector>
+
+namespace impulse2d {
+
+/// Where and under which name a URDF model goes.
+struct UrdfPlacement {
+  std::string modelName;         ///< prefix of every body and joint: "model_name/link"
+  Vec2 position = Vec2::Zero();  ///< m, the model's root frame in the world
+  double angle = 0.0;            ///< rad
+  std::string plane = "xz";      ///< the world's plane: "xz" (normal 3D y) or "xy" (normal z)
+};
+
+/// A revolute or prismatic URDF joint as created in the world, for joint_states and commands.
+struct UrdfJointInfo {
+  std::string name;  ///< the world's joint name, "model_name/joint"
+  JointType type = JointType::Revolute;
+  /// URDF position = sign * the world joint's position (and likewise velocity and motor speed):
+  /// -1 when a revolute axis points against the plane's counter-clockwise normal.
+  double sign = 1.0;
+  double maxEffort = 0.0;    ///< N m or N from <limit effort>; 0 when not given
+  double maxVelocity = 0.0;  ///< rad/s or m/s from <limit velocity>; 0 when not given
+};
+
+struct UrdfModel {
+  /// Bodies and joints, names prefixed; plane and frame as placed, world settings default.
+  Scene scene;
+  std::vector<UrdfJointInfo> joints;
+  /// What was left out (meshes, links without collision geometry, mimic tags), one line each.
+  std::vector<std::string> warnings;
+};
+
+/// Parses URDF text and projects it onto the plane. On failure returns false and sets `error` to
+/// one line naming the link or joint, e.g. "joint 'elbow': axis (1 0 0) lies in the xz plane; a
+/// revolute joint must turn about the plane normal (3D y)".
+bool parseUrdf(const std::string& urdfXml, const UrdfPlacement& placement, UrdfModel* out,
+               std::string* error);
+
+}  // namespace impulse2d

@@ -1,0 +1,105 @@
+// SimWorld's URDF side: spawning models, their joints' states in the URDF's sense, and joint
+// motors. No ROS header may appear here (see sim_world.hpp).
+#include "sim_world.hpp"
+
+#include <impulse2d/urdf.hpp>
+#include <impulse2d/world.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+namespace bridge {
+
+bool SimWorld::spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* out,
+                         std::string* error) {
+  UrdfPlacement placement;
+  placement.modelName = request.modelName;
+  placement.position = request.position;
+  placement.angle = request.angle;
+  placement.plane = plane_;
+  UrdfModel model;
+  if (!parseUrdf(request.xml, placement, &model, error)) return false;
+  std::vector<BodyId> bodies;
+  std::vector<JointId> joints;
+  if (!impulse2d::addScene(model.scene, *world_, error, &bodies, &joints)) return false;
+  for (const BodyId id : bodies) out->bodies.push_back(world_->body(id).name);
+  for (const JointId id : joints) out->joints.push_back(world_->jointDef(id).name);
+  out->warnings = model.warnings;
+  urdfJoints_.erase(std::remove_if(urdfJoints_.begin(), urdfJoints_.end(),
+                                   [&](const UrdfJoint& j) { return !world_->isValid(j.id); }),
+                    urdfJoints_.end());
+  // addScene creates the scene's joints in order, so joints[i] is model.joints[i]'s.
+  for (size_t i = 0; i < joints.size() && i < model.joints.size(); ++i) {
+    const UrdfJointInfo& info = model.joints[i];
+    urdfJoints_.push_back({joints[i], info.name, info.sign, info.maxEffort, info.maxVelocity});
+  }
+  ++staticVersion_;
+  if (atStart) startUrdfs_.push_back(request);
+  return true;
+}
+
+void SimWorld::respawnStartUrdfs() {
+  // Each was spawned once already, onto the same start scene, so this cannot fail.
+  for (const UrdfRequest& request : startUrdfs_) {
+    UrdfSpawned unused;
+    std::string error;
+    spawnUrdf(request, false, &unused, &error);
+  }
+}
+
+bool SimWorld::setJointMotor(const std::string& name, double speed, double maxEffort, bool release,
+                             std::string* error) {
+  const JointId id = world_->findJoint(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no joint named '" + name + "'";
+    return false;
+  }
+  const JointType type = world_->jointDef(id).type;
+  if (type != JointType::Revolute && type != JointType::Prismatic) {
+    *error = "name: '" + name + "' is neither a revolute nor a prismatic joint";
+    return false;
+  }
+  if (!std::isfinite(speed)) {
+    *error = "speed: must be finite";
+    return false;
+  }
+  if (!std::isfinite(maxEffort) || maxEffort < 0.0) {
+    *error = "max_effort: must be finite and >= 0";
+    return false;
+  }
+  if (release) return world_->setJointMotor(id, false, 0.0, 0.0);
+  const auto urdf = std::find_if(urdfJoints_.begin(), urdfJoints_.end(),
+                                 [&](const UrdfJoint& j) { return j.id == id; });
+  double sign = 1.0;
+  if (urdf != urdfJoints_.end()) {
+    sign = urdf->sign;
+    if (maxEffort == 0.0 || (urdf->maxEffort > 0.0 && maxEffort > urdf->maxEffort)) {
+      maxEffort = urdf->maxEffort;
+    }
+    if (urdf->maxVelocity > 0.0) {
+      speed = std::clamp(speed, -urdf->maxVelocity, urdf->maxVelocity);
+    }
+  }
+  if (maxEffort == 0.0) {
+    *error = "max_effort: must be > 0 (the joint has no URDF effort limit to default to)";
+    return false;
+  }
+  return world_->setJointMotor(id, true, sign * speed, maxEffort);
+}
+
+std::vector<JointReading> SimWorld::urdfJointStates() const {
+  std::vector<JointReading> out;
+  for (const UrdfJoint& joint : urdfJoints_) {
+    // A deleted joint (or body) leaves an invalid id behind; its slot's new joint is another.
+    if (!world_->isValid(joint.id)) continue;
+    const JointState state = world_->jointState(joint.id);
+    // Adding 0.0 turns a -0.0 (a resting joint with sign -1) into 0.0 for readers.
+    out.push_back(
+        {joint.name, joint.sign * state.position + 0.0, joint.sign * state.velocity + 0.0});
+  }
+  return out;
+}
+
+}  // namespace bridge
+}  // namespace impulse2d
