@@ -1,5 +1,6 @@
 // World's static checks of world and body definitions. The messages name the scene YAML keys, so
 // the scene loader and the ROS services report a bad value in the same words.
+#include <impulse2d/limits.hpp>
 #include <impulse2d/shape.hpp>
 #include <impulse2d/world.hpp>
 
@@ -10,12 +11,8 @@ namespace impulse2d {
 namespace {
 
 // Bounds on the work one definition can cause; beyond them a request is a mistake, not a scene.
+// (The limits on counts and sizes are in limits.hpp.)
 constexpr int kMaxIterations = 1000;
-constexpr size_t kMaxShapesPerBody = 64;
-constexpr size_t kMaxNameLength = 256;
-// m. Doubles resolve better than a nanometre out to here; much farther out the solver's
-// millimetre tolerances drown in rounding, and areas and inertias can overflow.
-constexpr double kMaxCoordinate = 1e6;
 
 bool finiteNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 

@@ -19,6 +19,7 @@ void World::step() {
   w.solveContinuous();        // 7. fast bodies stop at their first impact instead of tunnelling
   w.correctPositions();       // 8. NGS solver only: push remaining overlaps apart
   w.updateSleep(dt);          // 9. islands still for long enough fall asleep
+  removeEscapedBodies();      // 10. bodies that left the world extent are removed, not computed
   w.clearForces();
   w.time += dt;
   ++w.steps;
