@@ -27,6 +27,11 @@ constexpr std::size_t kMaxPendingWrenches = 4096;
 /// m. Bodies are created, and may be placed, only within this distance of the origin on each
 /// axis: out to here doubles resolve better than a nanometre.
 constexpr double kMaxCoordinate = 1e6;
+/// m/s and rad/s: the fastest a body may be created or set moving. Far beyond anything physical;
+/// it keeps products of speeds, masses and lever arms far from overflow.
+constexpr double kMaxSpeed = 1e6;
+/// N and N m: the largest force or torque one call may apply.
+constexpr double kMaxForce = 1e12;
 /// m. A body whose centre of mass leaves this box (on either axis), or whose state stops being
 /// finite, is removed at the end of the step and reported by World::takeRemovedBodies(),
 /// instead of being computed on as inf or NaN.

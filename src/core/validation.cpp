@@ -109,8 +109,12 @@ std::string World::validate(const BodyDef& def) {
   }
   if (!withinWorld(def.position)) return "position: must be finite and within 1e6 m of the origin";
   if (!std::isfinite(def.angle)) return "angle: must be finite";
-  if (!isFinite(def.linearVelocity)) return "linear_velocity: must be finite";
-  if (!std::isfinite(def.angularVelocity)) return "angular_velocity: must be finite";
+  if (!isFinite(def.linearVelocity) || def.linearVelocity.norm() > kMaxSpeed) {
+    return "linear_velocity: must be finite and at most 1e6 m/s";
+  }
+  if (!std::isfinite(def.angularVelocity) || std::abs(def.angularVelocity) > kMaxSpeed) {
+    return "angular_velocity: must be finite and at most 1e6 rad/s";
+  }
   if (!finiteNonNegative(def.linearDamping)) return "linear_damping: must be finite and >= 0";
   if (!finiteNonNegative(def.angularDamping)) return "angular_damping: must be finite and >= 0";
   if (!finiteNonNegative(def.mass)) return "mass: must be finite and >= 0";

@@ -377,6 +377,7 @@ bool World::setTransform(BodyId id, const Vec2& position, double angle) {
 
 bool World::setVelocity(BodyId id, const Vec2& linear, double angular) {
   if (!isValid(id) || !isFinite(linear) || !std::isfinite(angular)) return false;
+  if (linear.norm() > kMaxSpeed || std::abs(angular) > kMaxSpeed) return false;
   Body& body = impl_->bodies.items[id.index];
   if (body.type == BodyType::Static) return false;
   body.linearVelocity = linear;
@@ -387,6 +388,8 @@ bool World::setVelocity(BodyId id, const Vec2& linear, double angular) {
 
 bool World::applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint) {
   if (!isValid(id) || !isFinite(force) || !isFinite(worldPoint)) return false;
+  // Bounded so that the torque about the centre stays finite.
+  if (force.norm() > kMaxForce || worldPoint.cwiseAbs().maxCoeff() > kWorldExtent) return false;
   Body& body = impl_->bodies.items[id.index];
   if (body.type != BodyType::Dynamic) return false;
   body.force += force;
@@ -396,7 +399,7 @@ bool World::applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint) {
 }
 
 bool World::applyTorque(BodyId id, double torque) {
-  if (!isValid(id) || !std::isfinite(torque)) return false;
+  if (!isValid(id) || !std::isfinite(torque) || std::abs(torque) > kMaxForce) return false;
   Body& body = impl_->bodies.items[id.index];
   if (body.type != BodyType::Dynamic) return false;
   body.torque += torque;

@@ -33,8 +33,9 @@ void World::removeEscapedBodies() {
   std::vector<std::pair<BodyId, std::string>> escaped;
   for (size_t i = 0; i < w.bodies.items.size(); ++i) {
     const Body& body = w.bodies.items[i];
-    // Static bodies never move and were placed within kMaxCoordinate.
-    if (!w.bodies.alive[i] || body.type == BodyType::Static) continue;
+    // Static bodies are checked too: they never move, but a non-finite impulse from a body
+    // gone wrong writes NaN into their velocities all the same, and would spread from there.
+    if (!w.bodies.alive[i]) continue;
     std::string reason = escapeReason(body);
     if (!reason.empty()) escaped.emplace_back(body.id, std::move(reason));
   }

@@ -161,6 +161,14 @@ bool SimWorld::applyWrench(const std::string& body, const Vec2& force, double to
     *error = "force, torque, point, duration: must be finite";
     return false;
   }
+  if (force.norm() > kMaxForce || std::abs(torque) > kMaxForce) {
+    *error = "force, torque: must be at most 1e12 N (N m)";
+    return false;
+  }
+  if (point.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    *error = "point: must be within 1e6 m of the origin on each axis";
+    return false;
+  }
   if (wrenches_.size() >= kMaxPendingWrenches) {
     *error = "the world already holds the maximum of " + std::to_string(kMaxPendingWrenches) +
              " pending wrenches; wait for some to end";
@@ -186,6 +194,10 @@ bool SimWorld::setBodyState(const std::string& name, const Vec2& position, doubl
   }
   if (std::abs(position.x()) > kMaxCoordinate || std::abs(position.y()) > kMaxCoordinate) {
     *error = "pose: must be within 1e6 m of the origin on each axis";
+    return false;
+  }
+  if (linearVelocity.norm() > kMaxSpeed || std::abs(angularVelocity) > kMaxSpeed) {
+    *error = "twist: must be at most 1e6 m/s (rad/s)";
     return false;
   }
   const bool isStatic = world_->body(id).type == BodyType::Static;

@@ -10,6 +10,8 @@
 #include "sim_world.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -117,6 +119,10 @@ struct Fingerprint {
 
 void checkFinite(const SimWorld& sim) {
   for (const auto& b : sim.bodies(false)) {
+    if (!impulse2d::isFinite(b.position) || !impulse2d::isFinite(b.linearVelocity)) {
+      std::fprintf(stderr, "body '%s': position %g %g velocity %g %g\n", b.name.c_str(),
+                   b.position.x(), b.position.y(), b.linearVelocity.x(), b.linearVelocity.y());
+    }
     IMPULSE2D_FUZZ_CHECK(impulse2d::isFinite(b.position) && std::isfinite(b.angle));
     IMPULSE2D_FUZZ_CHECK(impulse2d::isFinite(b.linearVelocity) && std::isfinite(b.angularVelocity));
   }
@@ -126,6 +132,8 @@ void checkFinite(const SimWorld& sim) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzInput in(data, size);
+  // IMPULSE2D_FUZZ_TRACE=1 prints the requests and the state after each, to read a crash.
+  static const bool trace = std::getenv("IMPULSE2D_FUZZ_TRACE") != nullptr;
   SimWorld sim;
   std::string error;
   if (!sim.loadStartScene(kStartScene, &error)) impulse2d::fuzz::fail("start scene refused");
@@ -134,7 +142,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     error.clear();
     bool ok = true;
     bool changesWorld = true;
-    switch (in.byte() % 10) {
+    const int kind = in.byte() % 10;
+    if (trace) std::fprintf(stderr, "request %d: kind %d\n", request, kind);
+    switch (kind) {
       case 0:
         ok = sim.spawnBody(body(in), &error);
         break;
@@ -155,7 +165,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const Vec2 force(in.number(-1e3, 1e3), in.number(-1e3, 1e3));
         const double torque = in.number(-1e3, 1e3);
         const Vec2 point(in.number(-5, 5), in.number(-5, 5));
-        ok = sim.applyWrench(target, force, torque, point, in.number(-1.0, 2.0), &error);
+        const double duration = in.number(-1.0, 2.0);
+        if (trace) {
+          std::fprintf(stderr, "  wrench on '%s': force %g %g torque %g point %g %g for %g s\n",
+                       target.c_str(), force.x(), force.y(), torque, point.x(), point.y(),
+                       duration);
+        }
+        ok = sim.applyWrench(target, force, torque, point, duration, &error);
         changesWorld = false;  // pending until the next step
         break;
       }
@@ -183,6 +199,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       default:
         sim.reset();
         continue;
+    }
+    if (trace) {
+      std::fprintf(stderr, "  -> %s %s\n", ok ? "ok" : "refused", error.c_str());
+      for (const auto& b : sim.bodies(false)) {
+        std::fprintf(stderr, "  %s p %.17g %.17g a %.17g v %.17g %.17g w %.17g\n", b.name.c_str(),
+                     b.position.x(), b.position.y(), b.angle, b.linearVelocity.x(),
+                     b.linearVelocity.y(), b.angularVelocity);
+      }
     }
     if (!ok) {
       IMPULSE2D_FUZZ_CHECK(!error.empty());
