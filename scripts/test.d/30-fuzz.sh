@@ -4,7 +4,8 @@
 # (test/fuzz/corpus/<name without fuzz_>/) with leak detection on. Any crash, leak, sanitizer
 # report, timeout or broken property fails the harness; the input that did it is kept in
 # $STAGE_RESULTS and printed in base64. Writes one JUnit test case per harness.
-# Bound: build ~2-3 min on 2 cores, then FUZZ_SECONDS per harness (about 2 min for 3 harnesses).
+# Bound: build ~3 min on 2 cores, then FUZZ_SECONDS per harness and core (70 s for 3 harnesses
+# on 2 cores).
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"
@@ -41,22 +42,44 @@ if ! { CC=clang CXX=clang++ cmake -S "$REPO" -B "$BUILD" -DIMPULSE2D_CORE_ONLY=O
   exit 1
 fi
 
-results=()
-for harness in "$BUILD"/fuzz_*; do
-  [ -x "$harness" ] || continue
+# One harness per core at a time: the stage takes about ceil(harnesses / cores) * FUZZ_SECONDS.
+run_harness() {  # run_harness PATH: runs it, leaves its exit code in $STAGE_RESULTS/NAME.rc
+  local harness="$1" name seeds work log
   name="$(basename "$harness")"
   seeds="$REPO/test/fuzz/corpus/${name#fuzz_}"
   [ -d "$seeds" ] || seeds="$REPO/test/fuzz/corpus/$name"
   work="$(mktemp -d)"  # new inputs go here, never into the repository's seed corpus
   log="$STAGE_RESULTS/$name.log"
-  dirs=("$work")
+  local dirs=("$work")
   [ -d "$seeds" ] && dirs+=("$seeds")
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: growth without bound is a failure.
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 UBSAN_OPTIONS=print_stacktrace=1 \
     "$harness" -max_total_time="$SECONDS_EACH" -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$STAGE_RESULTS/$name-" "${dirs[@]}" >"$log" 2>&1
-  rc=$?
+  echo $? >"$STAGE_RESULTS/$name.rc"
   rm -rf "$work"
+}
+
+harnesses=()
+for harness in "$BUILD"/fuzz_*; do
+  [ -x "$harness" ] && harnesses+=("$harness")
+done
+running=0
+for harness in "${harnesses[@]}"; do
+  run_harness "$harness" &
+  running=$((running + 1))
+  if [ "$running" -ge "$(nproc)" ]; then
+    wait -n
+    running=$((running - 1))
+  fi
+done
+wait
+
+results=()
+for harness in "${harnesses[@]}"; do
+  name="$(basename "$harness")"
+  log="$STAGE_RESULTS/$name.log"
+  rc="$(cat "$STAGE_RESULTS/$name.rc" 2>/dev/null || echo 1)"
   if [ "$rc" -eq 0 ]; then
     echo "fuzz: $name ok ($(grep -o 'Done [0-9]* runs' "$log" | head -n 1))" >&2
     results+=("$name:ok")
