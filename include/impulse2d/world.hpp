@@ -30,7 +30,7 @@ struct JointState {
   double velocity = 0.0;        ///< rad/s or m/s
 };
 
-/// A body that a step removed because it left the world (README "Limits").
+/// A body that a step removed because it left the world (limits.hpp, docs/security.md).
 struct RemovedBody {
   BodyId id;                     ///< no longer valid
   std::string name;

@@ -7,6 +7,9 @@
 #include <impulse2d/limits.hpp>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace impulse2d {
 namespace {

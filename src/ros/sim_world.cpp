@@ -246,6 +246,7 @@ void SimWorld::step() {
   world_->step();
   ++steps_;
   for (const RemovedBody& removed : world_->takeRemovedBodies()) {
+    ++staticVersion_;  // it may have been static: tf_static is sent again
     // The node drains this after every step; the cap only guards a caller that never does.
     if (removedMessages_.size() < 1024) {
       removedMessages_.push_back("removed body " + quoted(removed.name) + ": " + removed.reason);
