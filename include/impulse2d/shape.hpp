@@ -2,15 +2,13 @@
 #pragma once
 
 #include <impulse2d/defs.hpp>
+#include <impulse2d/limits.hpp>
 #include <impulse2d/math.hpp>
 
 #include <string>
 #include <vector>
 
 namespace impulse2d {
-
-/// Largest vertex count a convex polygon may have.
-constexpr int kMaxPolygonVertices = 16;
 
 /// Smallest edge a polygon may have and the smallest box side / circle radius, in metres.
 constexpr double kMinFeatureSize = 1e-4;

@@ -30,6 +30,14 @@ struct JointState {
   double velocity = 0.0;        ///< rad/s or m/s
 };
 
+/// A body that a step removed because it left the world (limits.hpp, docs/security.md).
+struct RemovedBody {
+  BodyId id;                     ///< no longer valid
+  std::string name;
+  Vec2 position = Vec2::Zero();  ///< its origin when removed (may be inf or NaN)
+  std::string reason;            ///< e.g. "left the world extent of 1e7 m"
+};
+
 struct WorldImpl;
 
 class World {
@@ -94,7 +102,16 @@ class World {
   /// equal hashes mean bit-identical states.
   uint64_t hash() const;
 
+  /// Bodies that steps removed since the last call, oldest first: those whose centre of mass
+  /// left kWorldExtent (limits.hpp) or whose state stopped being finite. At most 1024 are
+  /// kept between calls; removedBodyCount() counts them all.
+  std::vector<RemovedBody> takeRemovedBodies();
+  uint64_t removedBodyCount() const;
+
  private:
+  /// The step stage behind takeRemovedBodies() (world_bounds.cpp).
+  void removeEscapedBodies();
+
   std::unique_ptr<WorldImpl> impl_;
 };
 

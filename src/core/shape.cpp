@@ -46,6 +46,8 @@ std::string makePolygon(const std::vector<Vec2>& points, Polygon* out) {
   }
   for (const Vec2& p : points) {
     if (!isFinite(p)) return "vertices must be finite numbers";
+    // Beyond this the area and inertia products overflow long before doubles do.
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) return "vertices must be within 1e6 m";
   }
   std::vector<Vec2> ccw = points;
   if (twiceSignedArea(ccw) < 0.0) std::reverse(ccw.begin(), ccw.end());
@@ -104,6 +106,7 @@ Polygon transformed(const Polygon& polygon, const Transform& xf) {
 
 std::string makeShape(const ShapeDef& def, Shape* out) {
   if (!isFinite(def.offset)) return "offset: must be finite";
+  if (def.offset.cwiseAbs().maxCoeff() > kMaxCoordinate) return "offset: must be within 1e6 m";
   if (!std::isfinite(def.angle)) return "angle: must be finite";
   if (!std::isfinite(def.density) || def.density < 0.0) return "density: must be finite and >= 0";
   if (!std::isfinite(def.friction) || def.friction < 0.0)
@@ -121,6 +124,7 @@ std::string makeShape(const ShapeDef& def, Shape* out) {
       if (!isFinite(def.size) || def.size.x() < kMinFeatureSize || def.size.y() < kMinFeatureSize) {
         return "size: width and height must be finite and > 0.1 mm";
       }
+      if (def.size.maxCoeff() > kMaxCoordinate) return "size: must be at most 1e6 m";
       shape.type = ShapeType::Polygon;
       shape.polygon = makeBox(def.size.x(), def.size.y(), def.offset, def.angle);
       break;
@@ -128,6 +132,7 @@ std::string makeShape(const ShapeDef& def, Shape* out) {
       if (!std::isfinite(def.radius) || def.radius < kMinFeatureSize) {
         return "radius: must be finite and > 0.1 mm";
       }
+      if (def.radius > kMaxCoordinate) return "radius: must be at most 1e6 m";
       shape.type = ShapeType::Circle;
       shape.circle.center = def.offset;
       shape.circle.radius = def.radius;

@@ -1,5 +1,6 @@
 // World's static checks of world and body definitions. The messages name the scene YAML keys, so
 // the scene loader and the ROS services report a bad value in the same words.
+#include <impulse2d/limits.hpp>
 #include <impulse2d/shape.hpp>
 #include <impulse2d/world.hpp>
 
@@ -10,12 +11,8 @@ namespace impulse2d {
 namespace {
 
 // Bounds on the work one definition can cause; beyond them a request is a mistake, not a scene.
+// (The limits on counts and sizes are in limits.hpp.)
 constexpr int kMaxIterations = 1000;
-constexpr size_t kMaxShapesPerBody = 64;
-constexpr size_t kMaxNameLength = 256;
-// m. Doubles resolve better than a nanometre out to here; much farther out the solver's
-// millimetre tolerances drown in rounding, and areas and inertias can overflow.
-constexpr double kMaxCoordinate = 1e6;
 
 bool finiteNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 
@@ -124,8 +121,12 @@ std::string World::validate(const BodyDef& def) {
   }
   if (!withinWorld(def.position)) return "position: must be finite and within 1e6 m of the origin";
   if (!std::isfinite(def.angle)) return "angle: must be finite";
-  if (!isFinite(def.linearVelocity)) return "linear_velocity: must be finite";
-  if (!std::isfinite(def.angularVelocity)) return "angular_velocity: must be finite";
+  if (!isFinite(def.linearVelocity) || def.linearVelocity.norm() > kMaxSpeed) {
+    return "linear_velocity: must be finite and at most 1e6 m/s";
+  }
+  if (!std::isfinite(def.angularVelocity) || std::abs(def.angularVelocity) > kMaxSpeed) {
+    return "angular_velocity: must be finite and at most 1e6 rad/s";
+  }
   if (!finiteNonNegative(def.linearDamping)) return "linear_damping: must be finite and >= 0";
   if (!finiteNonNegative(def.angularDamping)) return "angular_damping: must be finite and >= 0";
   if (!finiteNonNegative(def.mass)) return "mass: must be finite and >= 0";

@@ -2,6 +2,8 @@
 // read-outs. The step itself is in world_step.cpp.
 #include "world_impl.hpp"
 
+#include <impulse2d/limits.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -91,8 +93,13 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   if (!def.name.empty() && w.bodyByName.count(def.name)) {
     return fail("name: a body named '" + def.name + "' already exists");
   }
-  if (w.bodies.freeList.empty() && w.bodies.items.size() >= size_t(kMaxBodySlots)) {
-    return fail("the world already holds the maximum number of bodies");
+  static_assert(kMaxBodies <= size_t(kMaxBodySlots), "contact keys hold 24-bit body slots");
+  if (w.bodies.count() >= kMaxBodies) {
+    return fail("the world already holds the maximum of " + std::to_string(kMaxBodies) + " bodies");
+  }
+  if (w.shapeCount + def.shapes.size() > kMaxShapes) {
+    return fail("shapes: the world would exceed its maximum of " + std::to_string(kMaxShapes) +
+                " shapes");
   }
 
   std::vector<Shape> shapes;
@@ -171,6 +178,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
     }
   }
   w.createProxies(body);
+  w.shapeCount += body.shapes.size();
   if (!def.name.empty()) w.bodyByName[def.name] = slot;
   return body.id;
 }
@@ -187,6 +195,7 @@ bool World::destroyBody(BodyId id) {
   w.destroyContactsOf(id.index);
   Body& body = w.bodies.items[id.index];
   w.destroyProxies(body);
+  w.shapeCount -= body.shapes.size();
   if (!body.name.empty()) w.bodyByName.erase(body.name);
   w.bodies.release(id.index);
   w.jointsOfBody[id.index].clear();
@@ -268,7 +277,10 @@ std::string World::validate(const JointDef& def) const {
 
 JointId World::createJoint(const JointDef& def, std::string* error) {
   WorldImpl& w = *impl_;
-  const std::string why = validate(def);
+  std::string why = validate(def);
+  if (why.empty() && w.joints.count() >= kMaxJoints) {
+    why = "the world already holds the maximum of " + std::to_string(kMaxJoints) + " joints";
+  }
   if (!why.empty()) {
     if (error) *error = why;
     return JointId();
@@ -356,6 +368,9 @@ size_t World::jointCount() const { return impl_->joints.count(); }
 
 bool World::setTransform(BodyId id, const Vec2& position, double angle) {
   if (!isValid(id) || !isFinite(position) || !std::isfinite(angle)) return false;
+  if (std::abs(position.x()) > kMaxCoordinate || std::abs(position.y()) > kMaxCoordinate) {
+    return false;
+  }
   Body& body = impl_->bodies.items[id.index];
   body.angle = angle;
   body.xf = Transform(position, Rot(angle));
@@ -367,6 +382,7 @@ bool World::setTransform(BodyId id, const Vec2& position, double angle) {
 
 bool World::setVelocity(BodyId id, const Vec2& linear, double angular) {
   if (!isValid(id) || !isFinite(linear) || !std::isfinite(angular)) return false;
+  if (linear.norm() > kMaxSpeed || std::abs(angular) > kMaxSpeed) return false;
   Body& body = impl_->bodies.items[id.index];
   if (body.type == BodyType::Static) return false;
   body.linearVelocity = linear;
@@ -377,6 +393,8 @@ bool World::setVelocity(BodyId id, const Vec2& linear, double angular) {
 
 bool World::applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint) {
   if (!isValid(id) || !isFinite(force) || !isFinite(worldPoint)) return false;
+  // Bounded so that the torque about the centre stays finite.
+  if (force.norm() > kMaxForce || worldPoint.cwiseAbs().maxCoeff() > kWorldExtent) return false;
   Body& body = impl_->bodies.items[id.index];
   if (body.type != BodyType::Dynamic) return false;
   body.force += force;
@@ -386,7 +404,7 @@ bool World::applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint) {
 }
 
 bool World::applyTorque(BodyId id, double torque) {
-  if (!isValid(id) || !std::isfinite(torque)) return false;
+  if (!isValid(id) || !std::isfinite(torque) || std::abs(torque) > kMaxForce) return false;
   Body& body = impl_->bodies.items[id.index];
   if (body.type != BodyType::Dynamic) return false;
   body.torque += torque;

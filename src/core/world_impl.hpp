@@ -70,6 +70,7 @@ struct WorldImpl {
   std::vector<std::vector<int>> jointsOfBody;  // by body slot
   std::unordered_map<std::string, int> bodyByName;
   std::unordered_map<std::string, int> jointByName;
+  size_t shapeCount = 0;  // over all living bodies, against kMaxShapes
 
   DynamicTree tree;
   std::vector<int> movedProxies;
@@ -135,6 +136,9 @@ struct WorldImpl {
   void correctPositions();
   void updateSleep(double dt);
   void clearForces();
+  // Bodies that left kWorldExtent or stopped being finite (world_bounds.cpp).
+  std::vector<RemovedBody> removedBodies;  // since the last World::takeRemovedBodies()
+  uint64_t removedBodyCount = 0;
 };
 
 }  // namespace impulse2d

@@ -20,9 +20,10 @@ void World::step() {
     w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
     w.integratePositions(dt);   // 6. move with the solved velocities
   }
-  w.solveContinuous();   // 7. fast bodies stop at their first impact instead of tunnelling
-  w.correctPositions();  // 8. NGS solvers only: push remaining overlaps apart
-  w.updateSleep(dt);     // 9. islands still for long enough fall asleep
+  w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
+  w.correctPositions();   // 8. NGS solvers only: push remaining overlaps apart
+  w.updateSleep(dt);      // 9. islands still for long enough fall asleep
+  removeEscapedBodies();  // 10. bodies that left the world extent are removed, not computed
   w.clearForces();
   w.time += dt;
   ++w.steps;

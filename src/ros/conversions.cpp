@@ -1,6 +1,8 @@
 // Messages to engine definitions and back, and the plane mapping (see conversions.hpp).
 #include "conversions.hpp"
 
+#include <impulse2d/limits.hpp>
+
 #include <cmath>
 #include <string>
 
@@ -56,6 +58,9 @@ std::string toShapeDef(const impulse2d::Shape& msg, const std::string& field, Sh
       break;
     case impulse2d::Shape::POLYGON:
       if (msg.vertices.size() < 3) return field + ".vertices: a polygon needs at least 3";
+      if (msg.vertices.size() > size_t(kMaxPolygonVertices)) {
+        return field + ".vertices: at most " + std::to_string(kMaxPolygonVertices) + " vertices";
+      }
       out->kind = ShapeKind::Polygon;
       out->vertices.clear();
       for (size_t i = 0; i < msg.vertices.size() && why.empty(); ++i) {
@@ -162,6 +167,9 @@ std::string toBodyDef(const impulse2d::Body& msg, BodyDef* out) {
        nonNegative("body.angular_damping", msg.angular_damping)});
   if (!why.empty()) return why;
   if (msg.shapes.empty()) return "body.shapes: a body needs at least one shape";
+  if (msg.shapes.size() > kMaxShapesPerBody) {
+    return "body.shapes: at most " + std::to_string(kMaxShapesPerBody) + " shapes per body";
+  }
   out->shapes.assign(msg.shapes.size(), ShapeDef());
   for (size_t i = 0; i < msg.shapes.size(); ++i) {
     why = toShapeDef(msg.shapes[i], indexed("body.shapes", i), &out->shapes[i]);

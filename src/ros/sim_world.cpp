@@ -1,6 +1,7 @@
 // The engine side of the ROS node. No ROS header may appear here (see sim_world.hpp).
 #include "sim_world.hpp"
 
+#include <impulse2d/limits.hpp>
 #include <impulse2d/scene.hpp>
 #include <impulse2d/world.hpp>
 
@@ -14,10 +15,13 @@ namespace {
 std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
 // A relative tolerance so that a duration of exactly k time steps gives k steps, not k + 1.
+// Capped so the conversion to an integer stays defined for any finite duration (a wrench held
+// for 1e15 steps outlives any run anyway).
 uint64_t stepsFor(double duration, double timeStep) {
-  if (duration <= 0.0) return 1;
+  constexpr double kMaxSteps = 1e15;
+  if (!(duration > 0.0)) return 1;
   const double steps = std::ceil(duration / timeStep * (1.0 - 1e-9));
-  return static_cast<uint64_t>(std::max(1.0, steps));
+  return static_cast<uint64_t>(std::clamp(steps, 1.0, kMaxSteps));
 }
 
 }  // namespace
@@ -157,6 +161,23 @@ bool SimWorld::applyWrench(const std::string& body, const Vec2& force, double to
     *error = "body: " + quoted(body) + " is not dynamic, so forces do not move it";
     return false;
   }
+  if (!isFinite(force) || !std::isfinite(torque) || !isFinite(point) || std::isnan(duration)) {
+    *error = "force, torque, point, duration: must be finite";
+    return false;
+  }
+  if (force.norm() > kMaxForce || std::abs(torque) > kMaxForce) {
+    *error = "force, torque: must be at most 1e12 N (N m)";
+    return false;
+  }
+  if (point.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    *error = "point: must be within 1e6 m of the origin on each axis";
+    return false;
+  }
+  if (wrenches_.size() >= kMaxPendingWrenches) {
+    *error = "the world already holds the maximum of " + std::to_string(kMaxPendingWrenches) +
+             " pending wrenches; wait for some to end";
+    return false;
+  }
   Wrench wrench;
   wrench.body = id;
   wrench.force = force;
@@ -173,6 +194,14 @@ bool SimWorld::setBodyState(const std::string& name, const Vec2& position, doubl
   const BodyId id = world_->findBody(name);
   if (name.empty() || !id.valid()) {
     *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
+    return false;
+  }
+  if (std::abs(position.x()) > kMaxCoordinate || std::abs(position.y()) > kMaxCoordinate) {
+    *error = "pose: must be within 1e6 m of the origin on each axis";
+    return false;
+  }
+  if (linearVelocity.norm() > kMaxSpeed || std::abs(angularVelocity) > kMaxSpeed) {
+    *error = "twist: must be at most 1e6 m/s (rad/s)";
     return false;
   }
   const bool isStatic = world_->body(id).type == BodyType::Static;
@@ -220,7 +249,20 @@ void SimWorld::step() {
                   wrenches_.end());
   world_->step();
   ++steps_;
+  for (const RemovedBody& removed : world_->takeRemovedBodies()) {
+    ++staticVersion_;  // it may have been static: tf_static is sent again
+    // The node drains this after every step; the cap only guards a caller that never does.
+    if (removedMessages_.size() < 1024) {
+      removedMessages_.push_back("removed body " + quoted(removed.name) + ": " + removed.reason);
+    }
+  }
   simTimeNs_ += static_cast<int64_t>(std::llround(timeStep() * 1e9));
+}
+
+std::vector<std::string> SimWorld::takeRemovedBodies() {
+  std::vector<std::string> out;
+  out.swap(removedMessages_);
+  return out;
 }
 
 double SimWorld::timeStep() const { return world_->settings().timeStep; }

@@ -122,6 +122,9 @@ class SimWorld {
 
   /// One fixed step, with the wrenches that are due.
   void step();
+  /// One line per body that steps removed since the last call because it left the world
+  /// (README "Limits"), e.g. "removed body 'ball': it left the world extent of 1e7 m".
+  std::vector<std::string> takeRemovedBodies();
   uint64_t stepCount() const { return steps_; }
   /// Simulated time as steps * time_step summed in nanoseconds, so it never drifts.
   int64_t simTimeNs() const { return simTimeNs_; }
@@ -168,6 +171,7 @@ class SimWorld {
   uint64_t steps_ = 0;
   int64_t simTimeNs_ = 0;
   uint64_t staticVersion_ = 0;
+  std::vector<std::string> removedMessages_;
 };
 
 }  // namespace bridge

@@ -125,6 +125,9 @@ void WorldNode::restartSchedule() {
 void WorldNode::stepLocked() {
   const auto start = std::chrono::steady_clock::now();
   sim_.step();
+  for (const std::string& removed : sim_.takeRemovedBodies()) {
+    ROS_WARN("[%s] %s", name_.c_str(), removed.c_str());
+  }
   statsStepSeconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++statsSteps_;

@@ -2,11 +2,12 @@
 // whether it comes from a scene file or a ROS service.
 #include "names.hpp"
 
+#include <impulse2d/limits.hpp>
+
 namespace impulse2d {
 namespace scene_detail {
 namespace {
 
-constexpr size_t kMaxNameLength = 256;
 // Quoted user text is cut here: a message is read by a person, often on one terminal line.
 constexpr size_t kMaxQuotedLength = 64;
 

@@ -1,5 +1,6 @@
 // Reads the contract's scene YAML into a Scene, refusing it whole at the first problem with one
 // line that names the key and the body or joint.
+#include <impulse2d/limits.hpp>
 #include <impulse2d/scene.hpp>
 
 #include "names.hpp"
@@ -15,9 +16,6 @@
 namespace impulse2d {
 namespace scene_detail {
 namespace {
-
-// A scene file larger than this is surely not one (or is /dev/zero); reading stops there.
-constexpr size_t kMaxSceneFileBytes = 64u << 20;
 
 // "bodies[3] 'box3'" when the entry has a usable name, else "bodies[3]".
 std::string entryContext(const char* list, size_t index, const YAML::Node& node) {
@@ -89,6 +87,11 @@ bool fail(std::string* error, const std::string& message) {
 
 bool parseScene(const std::string& yamlText, Scene* out, std::string* error) {
   using scene_detail::fail;
+  // yaml-cpp's node tree costs tens of times the text: refuse before parsing.
+  if (yamlText.size() > kMaxSceneBytes) {
+    return fail(error, "the scene is " + std::to_string(yamlText.size()) + " bytes; at most " +
+                           std::to_string(kMaxSceneBytes) + " are accepted");
+  }
   try {
     Scene scene = scene_detail::parseDocument(scene_detail::loadSingleDocument(yamlText));
     if (out != nullptr) *out = std::move(scene);
@@ -108,15 +111,15 @@ bool parseScene(const std::string& yamlText, Scene* out, std::string* error) {
 
 bool loadSceneFile(const std::string& path, Scene* out, std::string* error) {
   using scene_detail::fail;
-  using scene_detail::kMaxSceneFileBytes;
   std::ifstream file(path, std::ios::binary);
   if (!file) return fail(error, path + ": cannot open (" + std::strerror(errno) + ")");
   std::string text;
   char chunk[1 << 16];
   while (file.read(chunk, sizeof chunk) || file.gcount() > 0) {
     text.append(chunk, static_cast<size_t>(file.gcount()));
-    if (text.size() > kMaxSceneFileBytes) {
-      return fail(error, path + ": larger than " + std::to_string(kMaxSceneFileBytes >> 20) +
+    // A file larger than this is surely not a scene (or is /dev/zero): reading stops there.
+    if (text.size() > kMaxSceneBytes) {
+      return fail(error, path + ": larger than " + std::to_string(kMaxSceneBytes >> 20) +
                              " MiB, too large for a scene");
     }
   }

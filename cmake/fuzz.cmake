@@ -1,0 +1,45 @@
+# libFuzzer harnesses: one executable per test/fuzz/fuzz_*.cpp, in a separate core-only clang
+# build (scripts/test.d/30-fuzz.sh):
+#   CC=clang CXX=clang++ cmake -S . -B build_fuzz -DIMPULSE2D_CORE_ONLY=ON -DIMPULSE2D_FUZZ=ON
+# Everything, the libraries included, is built with ASan + UBSan and libFuzzer's coverage
+# instrumentation; harnesses link the libraries and whatever ROS-free loaders exist.
+if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+  message(FATAL_ERROR "IMPULSE2D_FUZZ needs clang (CC=clang CXX=clang++)")
+endif()
+if(NOT IMPULSE2D_CORE_ONLY)
+  message(FATAL_ERROR "IMPULSE2D_FUZZ needs IMPULSE2D_CORE_ONLY=ON")
+endif()
+
+# Applies to every target defined after this file is included (core.cmake comes after it).
+add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all
+  -fno-omit-frame-pointer -g)
+add_link_options(-fsanitize=address,undefined)
+
+# Defines the harness targets; called once core.cmake's libraries exist.
+function(impulse2d_add_fuzzers)
+  # The node's request path without ROS (sim_world.cpp includes no ROS header by design).
+  add_library(impulse2d_fuzz_sim_world STATIC ${PROJECT_SOURCE_DIR}/src/ros/sim_world.cpp)
+  target_include_directories(impulse2d_fuzz_sim_world PUBLIC ${PROJECT_SOURCE_DIR}/src/ros)
+  target_link_libraries(impulse2d_fuzz_sim_world PUBLIC impulse2d_scene)
+
+  file(GLOB harnesses CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/fuzz/fuzz_*.cpp)
+  set(IMPULSE2D_FUZZERS "")
+  foreach(source ${harnesses})
+    get_filename_component(name ${source} NAME_WE)
+    if(name MATCHES "urdf" AND NOT TARGET impulse2d_urdf)
+      message(WARNING "${name}: no impulse2d_urdf library in the core-only build; not built")
+      continue()
+    endif()
+    add_executable(${name} ${source})
+    target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test/fuzz
+      ${PROJECT_SOURCE_DIR}/src/core ${PROJECT_SOURCE_DIR}/src/scene)
+    target_link_libraries(${name} PRIVATE impulse2d_core impulse2d_scene impulse2d_fuzz_sim_world)
+    # The URDF loader, once it exists as a ROS-free library.
+    if(TARGET impulse2d_urdf)
+      target_link_libraries(${name} PRIVATE impulse2d_urdf)
+    endif()
+    target_link_options(${name} PRIVATE -fsanitize=fuzzer)
+    list(APPEND IMPULSE2D_FUZZERS ${name})
+  endforeach()
+  add_custom_target(fuzzers DEPENDS ${IMPULSE2D_FUZZERS})
+endfunction()

@@ -1,0 +1,17 @@
+# Tests of reliability (after ros_targets.cmake, with testing enabled): the node reaches the
+# CLI's exact state (hash.test, ~5 s), and the load test (load.test, ~75 s).
+add_rostest_gtest(impulse2d_hash_test test/ros/hash.test
+  test/ros/hash_test.cpp test/ros/scene_names.cpp)
+target_link_libraries(impulse2d_hash_test impulse2d_scene ${catkin_LIBRARIES})
+target_compile_definitions(impulse2d_hash_test PRIVATE
+  IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+  IMPULSE2D_SIM_EXECUTABLE="$<TARGET_FILE:impulse2d_sim>")
+add_dependencies(impulse2d_hash_test impulse2d_node impulse2d_sim ${PROJECT_NAME}_generate_messages_cpp)
+
+add_rostest_gtest(impulse2d_load_test test/ros/load.test test/ros/load_test.cpp)
+target_link_libraries(impulse2d_load_test ${catkin_LIBRARIES})
+add_dependencies(impulse2d_load_test impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
+
+# SimWorld's and the conversions' limits, without a master.
+catkin_add_gtest(impulse2d_sim_world_limits_tests test/ros/sim_world_limits_test.cpp)
+target_link_libraries(impulse2d_sim_world_limits_tests impulse2d_ros GTest::gtest_main)

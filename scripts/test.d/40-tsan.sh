@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# ThreadSanitizer on the node: builds impulse2d_node and the world rostest client with
+# -fsanitize=thread in a separate catkin workspace ($IMPULSE2D_WS-tsan), then runs the
+# concurrent service tests (test/ros/tsan.test) against it. Any ThreadSanitizer report from the
+# node fails the stage; test/ros/tsan.supp lists the uninstrumented ROS libraries whose internal
+# synchronisation TSan cannot see. Writes rostest's JUnit XML and one case for the reports.
+# Bound: build ~4 min on 2 cores (node, its libraries, the test client), run ~30 s.
+set -uo pipefail
+REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
+STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"
+WS="${IMPULSE2D_WS:-/tmp/impulse2d_ws}-tsan"
+export PATH="/usr/bin:$PATH"
+mkdir -p "$WS/src" "$STAGE_RESULTS"
+ln -sfn "$REPO" "$WS/src/impulse2d"
+if ! (cd "$WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DIMPULSE2D_TSAN=ON \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -j"$(nproc)" impulse2d_node impulse2d_world_tests \
+    >"$STAGE_RESULTS/build.log" 2>&1); then
+  tail -n 40 "$STAGE_RESULTS/build.log" >&2
+  exit 1
+fi
+rm -f "$STAGE_RESULTS"/tsan.*
+set +u  # ROS's setup scripts read unset variables
+# shellcheck disable=SC1091
+source "$WS/devel/setup.bash"
+set -u
+export TSAN_OPTIONS="suppressions=$REPO/test/ros/tsan.supp log_path=$STAGE_RESULTS/tsan second_deadlock_stack=1"
+ROS_TEST_RESULTS_DIR="$STAGE_RESULTS/rostest" rostest impulse2d tsan.test >"$STAGE_RESULTS/rostest.log" 2>&1
+rc=$?
+reports=$(cat "$STAGE_RESULTS"/tsan.* 2>/dev/null | grep -c "WARNING: ThreadSanitizer")
+{
+  echo '<?xml version="1.0" encoding="UTF-8"?>'
+  echo '<testsuite name="tsan" tests="1" failures="'"$([ "$reports" -eq 0 ] && echo 0 || echo 1)"'">'
+  if [ "$reports" -eq 0 ]; then
+    echo '  <testcase classname="tsan" name="no_thread_sanitizer_reports"/>'
+  else
+    echo '  <testcase classname="tsan" name="no_thread_sanitizer_reports"><failure message="'"$reports"' reports"><![CDATA['
+    cat "$STAGE_RESULTS"/tsan.* | head -n 200 | sed 's/]]>/]] >/g'
+    echo ']]></failure></testcase>'
+  fi
+  echo '</testsuite>'
+} >"$STAGE_RESULTS/tsan.xml"
+echo "tsan: rostest exit $rc, $reports ThreadSanitizer reports" >&2
+[ "$rc" -eq 0 ] && [ "$reports" -eq 0 ]

@@ -1,0 +1,104 @@
+// The node's request path (SimWorld, which WorldNode serialises its services onto) refuses what
+// breaks limits.hpp with a message and an unchanged world, and reports bodies the world removed.
+// Regression of fuzz_node_requests
+// (test/fuzz/corpus/node_requests/regress_huge_wrench_nan_on_ground): a wrench of 4e233 N at a
+// point 4e233 m away made NaN impulses that reached the static ground.
+#include "../../src/ros/conversions.hpp"
+#include "../../src/ros/sim_world.hpp"
+
+#include <gtest/gtest.h>
+#include <impulse2d/limits.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace impulse2d {
+namespace bridge {
+namespace {
+
+const char* const kScene = R"(
+bodies:
+  - {name: ground, type: static, position: [0, -0.5], shapes: [{size: [20, 1]}]}
+  - {name: a, position: [0, 0.5], shapes: [{size: [1, 1]}]}
+)";
+
+class SimWorldLimits : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string error;
+    ASSERT_TRUE(sim.loadStartScene(kScene, &error)) << error;
+  }
+  SimWorld sim;
+  std::string error;
+};
+
+TEST_F(SimWorldLimits, AbsurdWrenchesAreRefused) {
+  EXPECT_FALSE(sim.applyWrench("a", Vec2(4e233, 4e233), 0.0, Vec2(0.0, 4e233), 0.0, &error));
+  EXPECT_NE(error.find("force"), std::string::npos) << error;
+  EXPECT_FALSE(sim.applyWrench("a", Vec2(1.0, 0.0), 0.0, Vec2(0.0, 4e233), 0.0, &error));
+  EXPECT_NE(error.find("point"), std::string::npos) << error;
+  EXPECT_FALSE(sim.applyWrench("a", Vec2(1.0, 0.0), 2e12, Vec2::Zero(), 0.0, &error));
+  EXPECT_FALSE(sim.applyWrench("a", Vec2(1.0, 0.0), 0.0, Vec2::Zero(),
+                               std::numeric_limits<double>::quiet_NaN(), &error));
+  // A huge duration is accepted (held "forever") without overflowing the step count.
+  EXPECT_TRUE(sim.applyWrench("a", Vec2(0.0, 1.0), 0.0, Vec2::Zero(), 1e300, &error)) << error;
+  for (int i = 0; i < 10; ++i) sim.step();
+  for (const BodySnapshot& body : sim.bodies(false)) {
+    EXPECT_TRUE(isFinite(body.position) && isFinite(body.linearVelocity)) << body.name;
+  }
+}
+
+TEST_F(SimWorldLimits, PendingWrenchesAreCapped) {
+  for (size_t i = 0; i < kMaxPendingWrenches; ++i) {
+    ASSERT_TRUE(sim.applyWrench("a", Vec2(0.0, 0.001), 0.0, Vec2::Zero(), 10.0, &error)) << i;
+  }
+  EXPECT_FALSE(sim.applyWrench("a", Vec2(0.0, 0.001), 0.0, Vec2::Zero(), 10.0, &error));
+  EXPECT_NE(error.find("4096 pending wrenches"), std::string::npos) << error;
+}
+
+TEST_F(SimWorldLimits, SetBodyStateStaysWithinTheLimits) {
+  EXPECT_FALSE(sim.setBodyState("a", Vec2(0.0, 2e6), 0.0, Vec2::Zero(), 0.0, &error));
+  EXPECT_NE(error.find("pose"), std::string::npos) << error;
+  EXPECT_FALSE(sim.setBodyState("a", Vec2(0.0, 1.0), 0.0, Vec2(2e6, 0.0), 0.0, &error));
+  EXPECT_NE(error.find("twist"), std::string::npos) << error;
+  BodySnapshot a;
+  ASSERT_TRUE(sim.getBodyState("a", &a, &error));
+  EXPECT_EQ(a.position, Vec2(0.0, 0.5));
+}
+
+TEST_F(SimWorldLimits, BodiesThatLeaveTheWorldAreReportedOnce) {
+  BodyDef light;
+  light.name = "light";
+  light.position = Vec2(5.0, 5.0);
+  light.mass = 1e-6;
+  light.shapes.resize(1);
+  ASSERT_TRUE(sim.spawnBody(light, &error)) << error;
+  ASSERT_TRUE(sim.applyWrench("light", Vec2(kMaxForce, 0.0), 0.0, Vec2(5.0, 5.0), 0.0, &error));
+  sim.step();
+  const std::vector<std::string> removed = sim.takeRemovedBodies();
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0], "removed body 'light': it left the world extent of 1e7 m");
+  EXPECT_TRUE(sim.takeRemovedBodies().empty());
+  EXPECT_EQ(sim.bodyCount(), 2u);
+}
+
+TEST(ConversionsLimits, OversizedMessagesAreRefusedBeforeConversion) {
+  impulse2d::Body msg;
+  msg.name = "many";
+  msg.type = impulse2d::Body::DYNAMIC;
+  impulse2d::Shape box;
+  box.type = impulse2d::Shape::BOX;
+  box.width = box.height = 1.0;
+  msg.shapes.assign(kMaxShapesPerBody + 1, box);
+  BodyDef def;
+  EXPECT_NE(toBodyDef(msg, &def).find("at most 64 shapes"), std::string::npos);
+  impulse2d::Shape polygon;
+  polygon.type = impulse2d::Shape::POLYGON;
+  polygon.vertices.resize(kMaxPolygonVertices + 1);
+  msg.shapes.assign(1, polygon);
+  EXPECT_NE(toBodyDef(msg, &def).find("at most 16 vertices"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace bridge
+}  // namespace impulse2d

@@ -1,0 +1,189 @@
+// The limits of limits.hpp, each refused with a message naming it and the world unchanged, and
+// the world-extent stage that removes bodies instead of computing them as inf.
+#include <gtest/gtest.h>
+#include <impulse2d/limits.hpp>
+#include <impulse2d/scene.hpp>
+#include <impulse2d/world.hpp>
+
+#include <string>
+
+#include "test_scenes.hpp"
+
+namespace impulse2d {
+namespace {
+
+using test::addBox;
+
+BodyDef boxDef(const std::string& name, int shapes = 1) {
+  BodyDef def;
+  def.name = name;
+  def.shapes.resize(static_cast<size_t>(shapes));
+  return def;
+}
+
+TEST(Limits, ShapesPerBodyVerticesAndNameLength) {
+  World world;
+  std::string error;
+  EXPECT_FALSE(world.createBody(boxDef("many", kMaxShapesPerBody + 1), &error).valid());
+  EXPECT_NE(error.find("at most 64 shapes"), std::string::npos) << error;
+  EXPECT_TRUE(world.createBody(boxDef("ok", kMaxShapesPerBody), &error).valid()) << error;
+
+  BodyDef polygon = boxDef("polygon");
+  polygon.shapes[0].kind = ShapeKind::Polygon;
+  for (int i = 0; i <= kMaxPolygonVertices; ++i) {
+    const double a = 2.0 * kPi * i / (kMaxPolygonVertices + 1);
+    polygon.shapes[0].vertices.emplace_back(std::cos(a), std::sin(a));
+  }
+  EXPECT_FALSE(world.createBody(polygon, &error).valid());
+  EXPECT_NE(error.find("at most 16"), std::string::npos) << error;
+
+  EXPECT_FALSE(world.createBody(boxDef(std::string(kMaxNameLength + 1, 'n')), &error).valid());
+  EXPECT_NE(error.find("at most 256 characters"), std::string::npos) << error;
+  EXPECT_TRUE(world.createBody(boxDef(std::string(kMaxNameLength, 'n')), &error).valid());
+  EXPECT_EQ(world.bodyCount(), 2u);
+}
+
+// Found by fuzz_narrow_phase: a finite but absurd box size overflowed the polygon's area and
+// gave a NaN centroid (test/fuzz/corpus/narrow_phase/regress_huge_box_nan_centroid).
+TEST(Limits, ShapesBeyondTheCoordinateLimitAreRefusedByMakeShape) {
+  Shape shape;
+  ShapeDef box;
+  box.size = Vec2(4.6e305, 0.2);
+  EXPECT_NE(makeShape(box, &shape).find("size"), std::string::npos);
+  ShapeDef circle;
+  circle.kind = ShapeKind::Circle;
+  circle.radius = 1e300;
+  EXPECT_NE(makeShape(circle, &shape).find("radius"), std::string::npos);
+  ShapeDef polygon;
+  polygon.kind = ShapeKind::Polygon;
+  polygon.vertices = {Vec2(0, 0), Vec2(1e200, 0), Vec2(0, 1e200)};
+  EXPECT_NE(makeShape(polygon, &shape).find("vertices"), std::string::npos);
+  ShapeDef offset;
+  offset.offset = Vec2(2e6, 0.0);
+  EXPECT_NE(makeShape(offset, &shape).find("offset"), std::string::npos);
+}
+
+TEST(Limits, BodiesShapesAndJointsPerWorld) {
+  World world;
+  std::string error;
+  // The shape budget: kMaxShapes / 64 bodies of 64 shapes fill it exactly.
+  for (size_t i = 0; i < kMaxShapes / kMaxShapesPerBody; ++i) {
+    BodyDef def = boxDef("s" + std::to_string(i), kMaxShapesPerBody);
+    def.type = BodyType::Static;
+    def.position = Vec2(2.0 * static_cast<double>(i % 512), 2.0 * static_cast<double>(i / 512));
+    ASSERT_TRUE(world.createBody(def, &error).valid()) << error;
+  }
+  const uint64_t hash = world.hash();
+  EXPECT_FALSE(world.createBody(boxDef("one_more"), &error).valid());
+  EXPECT_NE(error.find("maximum of 262144 shapes"), std::string::npos) << error;
+  EXPECT_EQ(world.hash(), hash);
+  world.clear();
+
+  // Bodies: one shape each up to kMaxBodies.
+  for (size_t i = 0; i < kMaxBodies; ++i) {
+    BodyDef def = boxDef("", 1);
+    def.type = BodyType::Static;
+    def.position = Vec2(2.0 * static_cast<double>(i % 256), 2.0 * static_cast<double>(i / 256));
+    ASSERT_TRUE(world.createBody(def, &error).valid()) << i << ": " << error;
+  }
+  EXPECT_FALSE(world.createBody(boxDef("one_more"), &error).valid());
+  EXPECT_NE(error.find("maximum of 65536 bodies"), std::string::npos) << error;
+  EXPECT_EQ(world.bodyCount(), kMaxBodies);
+  world.clear();
+
+  const BodyId a = addBox(world, "a", Vec2(0, 0), 1, 1, BodyType::Dynamic);
+  const BodyId b = addBox(world, "b", Vec2(3, 0), 1, 1, BodyType::Dynamic);
+  JointDef joint;
+  joint.type = JointType::Weld;
+  joint.bodyA = a;
+  joint.bodyB = b;
+  for (size_t i = 0; i < kMaxJoints; ++i) ASSERT_TRUE(world.createJoint(joint, &error).valid());
+  EXPECT_FALSE(world.createJoint(joint, &error).valid());
+  EXPECT_NE(error.find("maximum of 65536 joints"), std::string::npos) << error;
+  EXPECT_EQ(world.jointCount(), kMaxJoints);
+}
+
+TEST(Limits, SceneTextLargerThanTheLimitIsRefusedBeforeParsing) {
+  const std::string text = "bodies: []\n" + std::string(kMaxSceneBytes, '#');
+  std::string error;
+  EXPECT_FALSE(parseScene(text, nullptr, &error));
+  EXPECT_NE(error.find("at most 16777216"), std::string::npos) << error;
+}
+
+TEST(Limits, TeleportingBeyondTheCoordinateLimitIsRefused) {
+  World world;
+  const BodyId a = addBox(world, "a", Vec2(0, 0), 1, 1, BodyType::Dynamic);
+  EXPECT_FALSE(world.setTransform(a, Vec2(0.0, 2e6), 0.0));
+  EXPECT_EQ(world.body(a).xf.p, Vec2(0, 0));
+  EXPECT_TRUE(world.setTransform(a, Vec2(0.0, 1e6), 0.0));
+}
+
+BodyId addLightBox(World& world, const std::string& name, const Vec2& position, double mass) {
+  BodyDef def = boxDef(name);
+  def.position = position;
+  def.mass = mass;
+  return world.createBody(def);
+}
+
+TEST(Limits, SpeedsForcesAndTorquesAreBounded) {
+  World world;
+  const BodyId a = addBox(world, "a", Vec2(0, 0), 1, 1, BodyType::Dynamic);
+  EXPECT_FALSE(world.setVelocity(a, Vec2(2e6, 0.0), 0.0));
+  EXPECT_FALSE(world.setVelocity(a, Vec2::Zero(), -2e6));
+  EXPECT_FALSE(world.applyForce(a, Vec2(0.0, 2e12), Vec2::Zero()));
+  EXPECT_FALSE(world.applyForce(a, Vec2(1.0, 0.0), Vec2(0.0, 1e300)));
+  EXPECT_FALSE(world.applyTorque(a, 2e12));
+  EXPECT_EQ(world.body(a).force, Vec2::Zero());
+  BodyDef fast = boxDef("fast");
+  fast.linearVelocity = Vec2(0.0, 2e6);
+  std::string error;
+  EXPECT_FALSE(world.createBody(fast, &error).valid());
+  EXPECT_NE(error.find("linear_velocity"), std::string::npos) << error;
+}
+
+TEST(WorldBounds, BodiesLeavingTheWorldAreRemovedAndReported) {
+  World world;
+  world.settings().gravity = Vec2::Zero();
+  const BodyId stay = addBox(world, "stay", Vec2(0, 0), 1, 1, BodyType::Dynamic);
+  // 1e12 N on a milligram: 1e16 m/s after one 0.01 s step, 1e14 m away.
+  const BodyId fast = addLightBox(world, "fast", Vec2(5, 0), 1e-6);
+  const BodyId partner = addBox(world, "partner", Vec2(5, 3), 1, 1, BodyType::Dynamic);
+  JointDef joint;
+  joint.name = "rope";
+  joint.type = JointType::Distance;
+  joint.bodyA = partner;
+  joint.bodyB = fast;
+  joint.anchor = Vec2(5, 3);
+  joint.frequency = 1.0;  // a soft spring: it cannot hold the body
+  ASSERT_TRUE(world.createJoint(joint).valid());
+  ASSERT_TRUE(world.applyForce(fast, Vec2(kMaxForce, 0.0), world.body(fast).center));
+  world.step();
+  EXPECT_FALSE(world.isValid(fast));
+  EXPECT_FALSE(world.findJoint("rope").valid()) << "its joints go with it";
+  EXPECT_TRUE(world.isValid(stay));
+  const std::vector<RemovedBody> removed = world.takeRemovedBodies();
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0].name, "fast");
+  EXPECT_NE(removed[0].reason.find("world extent"), std::string::npos) << removed[0].reason;
+  EXPECT_TRUE(world.takeRemovedBodies().empty()) << "reported once";
+  EXPECT_EQ(world.removedBodyCount(), 1u);
+
+  // A mass so small that any force overflows its velocity: removed as no longer finite, the
+  // rest untouched.
+  const BodyId feather = addLightBox(world, "feather", Vec2(-5, 0), 1e-300);
+  ASSERT_TRUE(world.applyForce(feather, Vec2(1e12, 0.0), world.body(feather).center));
+  world.step();
+  EXPECT_FALSE(world.isValid(feather));
+  const std::vector<RemovedBody> overflowed = world.takeRemovedBodies();
+  ASSERT_EQ(overflowed.size(), 1u);
+  EXPECT_NE(overflowed[0].reason.find("finite"), std::string::npos) << overflowed[0].reason;
+  for (const BodyId id : {stay, partner}) {
+    ASSERT_TRUE(world.isValid(id));
+    EXPECT_TRUE(isFinite(world.body(id).xf.p));
+  }
+  for (int i = 0; i < 10; ++i) world.step();
+  EXPECT_EQ(world.bodyCount(), 2u);
+}
+
+}  // namespace
+}  // namespace impulse2d
