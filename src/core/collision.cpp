@@ -50,6 +50,23 @@ uint32_t featureId(uint32_t reference, uint32_t incident, bool flip) {
   return featureA | (featureB << 16);
 }
 
+// A polygon expressed in another shape's frame. Only its `count` vertices and normals are
+// written: the narrow phase runs for every close pair on every step, and copying a full
+// Polygon (16 slots of each, plus its centroid) cost more than the transform itself.
+struct PolygonInFrame {
+  int count = 0;
+  Vec2 vertices[kMaxPolygonVertices];  // left uninitialised beyond count
+  Vec2 normals[kMaxPolygonVertices];
+};
+
+void transformInto(const Polygon& polygon, const Transform& xf, PolygonInFrame* out) {
+  out->count = polygon.count;
+  for (int i = 0; i < polygon.count; ++i) {
+    out->vertices[i] = xf.apply(polygon.vertices[i]);
+    out->normals[i] = xf.q.apply(polygon.normals[i]);
+  }
+}
+
 struct FaceSeparation {
   double separation;
   int edge;
@@ -58,7 +75,7 @@ struct FaceSeparation {
 // The face of `poly` along whose normal `other` (given in poly's frame) is separated the most.
 // For convex polygons the largest such value is the signed distance when positive and minus the
 // penetration depth along face normals when negative.
-FaceSeparation maxFaceSeparation(const Polygon& poly, const Polygon& other) {
+FaceSeparation maxFaceSeparation(const Polygon& poly, const PolygonInFrame& other) {
   FaceSeparation best{-std::numeric_limits<double>::infinity(), 0};
   for (int i = 0; i < poly.count; ++i) {
     double deepest = std::numeric_limits<double>::infinity();
@@ -105,8 +122,8 @@ int clipSegment(const ClipVertex* in, int count, ClipVertex* out, const Vec2& no
 // The reference face itself is not a clipping plane: the clipped points keep their depth as
 // the separation, and those farther than the speculative distance are dropped. `inc` is given
 // in ref's frame; `flip` says that ref is shape B.
-Manifold clipIncidentEdge(const Polygon& ref, const Polygon& inc, const Transform& xfRef, int r,
-                          bool flip, double speculativeDistance) {
+Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const Transform& xfRef,
+                          int r, bool flip, double speculativeDistance) {
   Manifold m;
   const Vec2 n = ref.normals[r];
 
@@ -240,10 +257,12 @@ Manifold collidePolygonCircle(const Polygon& a, const Transform& xfA, const Circ
 Manifold collidePolygons(const Polygon& a, const Transform& xfA, const Polygon& b,
                          const Transform& xfB, double speculativeDistance) {
   if (a.count < 3 || b.count < 3) return Manifold();
-  const Polygon bInA = transformed(b, xfA.inverseTimes(xfB));
+  PolygonInFrame bInA;
+  transformInto(b, xfA.inverseTimes(xfB), &bInA);
   const FaceSeparation faceA = maxFaceSeparation(a, bInA);
   if (!(faceA.separation <= speculativeDistance)) return Manifold();
-  const Polygon aInB = transformed(a, xfB.inverseTimes(xfA));
+  PolygonInFrame aInB;
+  transformInto(a, xfB.inverseTimes(xfA), &aInB);
   const FaceSeparation faceB = maxFaceSeparation(b, aInB);
   if (!(faceB.separation <= speculativeDistance)) return Manifold();
 
