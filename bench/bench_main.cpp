@@ -26,15 +26,18 @@ const char* kUsage =
     "  --full            sweep velocity iterations, position iterations and the time step\n"
     "  --scenes A,B      only scenes whose name starts with A or B (e.g. pyramid100,scaling)\n"
     "  --engines A,B     only these engines (impulse2d, box2d, chipmunk)\n"
+    "  --solvers A,B     only these solvers (e.g. ngs,default)\n"
     "  --repeats N       timed runs per row; ms/step is their median (default 3, quick 1)\n"
+    "  --steps N         run N steps instead of each scene's duration (for profiling)\n"
     "  --csv FILE        results (default bench.csv)\n"
     "  --memory-csv FILE peak heap per body and per contact on pyramid100 (default\n"
     "                    <csv without .csv>_memory.csv; skipped when pyramid100 is filtered out)\n";
 
 struct Options {
   bool quick = false, full = false;
-  std::vector<std::string> scenes, engines;
+  std::vector<std::string> scenes, engines, solvers;
   int repeats = 0;  // 0: the mode's default
+  int steps = 0;    // 0: each scene's duration
   std::string csv = "bench.csv", memoryCsv;
 };
 
@@ -68,12 +71,21 @@ std::string parseOptions(int argc, char** argv, Options* o) {
     } else if (arg == "--engines") {
       if (!value(&v)) return "--engines needs a comma-separated list";
       o->engines = splitList(v);
+    } else if (arg == "--solvers") {
+      if (!value(&v)) return "--solvers needs a comma-separated list";
+      o->solvers = splitList(v);
     } else if (arg == "--repeats") {
       if (!value(&v)) return "--repeats needs a number";
       char* end = nullptr;
       const long n = std::strtol(v.c_str(), &end, 10);
       if (*end != '\0' || n < 1 || n > 100) return "--repeats must be 1..100";
       o->repeats = static_cast<int>(n);
+    } else if (arg == "--steps") {
+      if (!value(&v)) return "--steps needs a number";
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (*end != '\0' || n < 1 || n > 1000000) return "--steps must be 1..1000000";
+      o->steps = static_cast<int>(n);
     } else if (arg == "--csv") {
       if (!value(&o->csv)) return "--csv needs a file name";
     } else if (arg == "--memory-csv") {
@@ -149,10 +161,12 @@ struct RunResult {
 
 // Runs a job `repeats` times on fresh worlds; only the stepping loop is timed. The error figures
 // come from the first run (every engine here is deterministic, so the others repeat them).
-RunResult runJob(const Job& job, int repeats) {
+RunResult runJob(const Job& job, int repeats, int steps) {
   RunResult result;
   result.steps =
-      std::max(1, static_cast<int>(std::lround(job.scene->duration / job.settings.timeStep)));
+      steps > 0
+          ? steps
+          : std::max(1, static_cast<int>(std::lround(job.scene->duration / job.settings.timeStep)));
   const int sampleEvery = std::max(1, static_cast<int>(std::lround(0.25 / job.settings.timeStep)));
   std::vector<double> msPerStep;
   std::vector<BodyState> states;
@@ -261,12 +275,16 @@ int run(const Options& options) {
     if (!selected(options.scenes, scene.name)) continue;
     for (const EngineInfo* engine : engines) {
       for (const std::string& solver : engine->solvers) {
+        if (!options.solvers.empty() && std::find(options.solvers.begin(), options.solvers.end(),
+                                                  solver) == options.solvers.end()) {
+          continue;
+        }
         for (const Job& job : jobsFor(*engine, solver, scene, options.full)) jobs.push_back(job);
       }
     }
   }
   if (jobs.empty()) {
-    std::cerr << "impulse2d_bench: no scene matches --scenes\n";
+    std::cerr << "impulse2d_bench: nothing matches --scenes, --engines and --solvers\n";
     return 2;
   }
 
@@ -280,7 +298,7 @@ int run(const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   for (size_t k = 0; k < jobs.size(); ++k) {
     const Job& job = jobs[k];
-    const RunResult result = runJob(job, options.repeats);
+    const RunResult result = runJob(job, options.repeats, options.steps);
     csv << csvRow(job, result) << '\n';
     csv.flush();
     const double elapsed =
