@@ -28,6 +28,7 @@ const char* kUsage =
     "  --engines A,B     only these engines (impulse2d, box2d, chipmunk)\n"
     "  --solvers A,B     only these solvers (e.g. ngs,default)\n"
     "  --repeats N       timed runs per row; ms/step is their median (default 3, quick 1)\n"
+    "  --sweep-repeats N timed runs of each swept (non-default) row (default 1)\n"
     "  --steps N         run N steps instead of each scene's duration (for profiling)\n"
     "  --csv FILE        results (default bench.csv)\n"
     "  --memory-csv FILE peak heap per body and per contact on pyramid100 (default\n"
@@ -37,7 +38,8 @@ struct Options {
   bool quick = false, full = false;
   std::vector<std::string> scenes, engines, solvers;
   int repeats = 0;  // 0: the mode's default
-  int steps = 0;    // 0: each scene's duration
+  int sweepRepeats = 1;
+  int steps = 0;  // 0: each scene's duration
   std::string csv = "bench.csv", memoryCsv;
 };
 
@@ -80,6 +82,12 @@ std::string parseOptions(int argc, char** argv, Options* o) {
       const long n = std::strtol(v.c_str(), &end, 10);
       if (*end != '\0' || n < 1 || n > 100) return "--repeats must be 1..100";
       o->repeats = static_cast<int>(n);
+    } else if (arg == "--sweep-repeats") {
+      if (!value(&v)) return "--sweep-repeats needs a number";
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (*end != '\0' || n < 1 || n > 100) return "--sweep-repeats must be 1..100";
+      o->sweepRepeats = static_cast<int>(n);
     } else if (arg == "--steps") {
       if (!value(&v)) return "--steps needs a number";
       char* end = nullptr;
@@ -159,40 +167,38 @@ struct RunResult {
   ErrorFigures errors;
 };
 
-// Runs a job `repeats` times on fresh worlds; only the stepping loop is timed. The error figures
-// come from the first run (every engine here is deterministic, so the others repeat them).
-RunResult runJob(const Job& job, int repeats, int steps) {
+int stepsOf(const Job& job, int fixedSteps) {
+  if (fixedSteps > 0) return fixedSteps;
+  return std::max(1, static_cast<int>(std::lround(job.scene->duration / job.settings.timeStep)));
+}
+
+// Runs a job once on a fresh world; only the stepping loop is timed. With `measure`, the run is
+// also sampled for the error figures (every engine here is deterministic, so one measured run per
+// job is enough; further runs only add times).
+RunResult runOnce(const Job& job, int fixedSteps, bool measure) {
   RunResult result;
-  result.steps =
-      steps > 0
-          ? steps
-          : std::max(1, static_cast<int>(std::lround(job.scene->duration / job.settings.timeStep)));
+  result.steps = stepsOf(job, fixedSteps);
   const int sampleEvery = std::max(1, static_cast<int>(std::lround(0.25 / job.settings.timeStep)));
-  std::vector<double> msPerStep;
   std::vector<BodyState> states;
-  for (int r = 0; r < repeats; ++r) {
-    std::unique_ptr<EngineAdapter> adapter = job.engine->make();
-    adapter->build(*job.scene, job.settings);
-    ErrorMeter meter(*job.scene);
-    double seconds = 0.0;
-    for (int s = 1; s <= result.steps; ++s) {
-      const auto start = std::chrono::steady_clock::now();
-      adapter->step();
-      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (r == 0 && s % sampleEvery == 0 && s < result.steps) {
-        adapter->read(&states);
-        meter.sample(states);
-      }
-    }
-    msPerStep.push_back(1000.0 * seconds / result.steps);
-    if (r == 0) {
+  std::unique_ptr<EngineAdapter> adapter = job.engine->make();
+  adapter->build(*job.scene, job.settings);
+  ErrorMeter meter(*job.scene);
+  double seconds = 0.0;
+  for (int s = 1; s <= result.steps; ++s) {
+    const auto start = std::chrono::steady_clock::now();
+    adapter->step();
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (measure && s % sampleEvery == 0 && s < result.steps) {
       adapter->read(&states);
-      result.errors = meter.finish(states);
-      result.contacts = adapter->contactCount();
+      meter.sample(states);
     }
   }
-  std::sort(msPerStep.begin(), msPerStep.end());
-  result.msPerStep = msPerStep[msPerStep.size() / 2];
+  result.msPerStep = 1000.0 * seconds / result.steps;
+  if (measure) {
+    adapter->read(&states);
+    result.errors = meter.finish(states);
+    result.contacts = adapter->contactCount();
+  }
   return result;
 }
 
@@ -296,21 +302,49 @@ int run(const Options& options) {
   csv << kCsvHeader << '\n';
   const bool terminal = isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
-  for (size_t k = 0; k < jobs.size(); ++k) {
-    const Job& job = jobs[k];
-    const RunResult result = runJob(job, options.repeats, options.steps);
-    csv << csvRow(job, result) << '\n';
-    csv.flush();
+  auto progress = [&](size_t index, const Job& job, int repeat, int repeats, double ms,
+                      bool stood) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     char line[256];
     std::snprintf(line, sizeof line,
-                  "[%zu/%zu %.0f s] %s %s %s dt=1/%.0f vel=%d pos=%d: %.3f ms/step%s", k + 1,
-                  jobs.size(), elapsed, job.engine->name.c_str(), job.settings.solver.c_str(),
-                  job.scene->name.c_str(), 1.0 / job.settings.timeStep,
-                  job.settings.velocityIterations, job.settings.positionIterations,
-                  result.msPerStep, result.errors.stood ? "" : " (did not stand)");
+                  "[%zu/%zu %.0f s] %s %s %s dt=1/%.0f vel=%d pos=%d run %d/%d: %.3f ms/step%s",
+                  index + 1, jobs.size(), elapsed, job.engine->name.c_str(),
+                  job.settings.solver.c_str(), job.scene->name.c_str(), 1.0 / job.settings.timeStep,
+                  job.settings.velocityIterations, job.settings.positionIterations, repeat + 1,
+                  repeats, ms, stood ? "" : " (did not stand)");
     std::cerr << (terminal ? "\r\033[K" : "") << line << (terminal ? "" : "\n") << std::flush;
+  };
+  // Jobs run in batches: the default rows of one scene together, each swept row alone. Within a
+  // batch the repeats go round robin over the jobs, so a change in the machine's load (it may be
+  // shared) falls on every engine alike and the ratios of one run stay fair.
+  for (size_t first = 0; first < jobs.size();) {
+    size_t last = first + 1;
+    if (jobs[first].sweep == "default") {
+      while (last < jobs.size() && jobs[last].sweep == "default" &&
+             jobs[last].scene == jobs[first].scene) {
+        ++last;
+      }
+    }
+    const int repeats = jobs[first].sweep == "default" ? options.repeats : options.sweepRepeats;
+    std::vector<RunResult> results(last - first);
+    std::vector<std::vector<double>> times(last - first);
+    for (int r = 0; r < repeats; ++r) {
+      for (size_t k = first; k < last; ++k) {
+        const RunResult once = runOnce(jobs[k], options.steps, r == 0);
+        if (r == 0) results[k - first] = once;
+        times[k - first].push_back(once.msPerStep);
+        progress(k, jobs[k], r, repeats, once.msPerStep, results[k - first].errors.stood);
+      }
+    }
+    for (size_t k = first; k < last; ++k) {
+      std::vector<double>& t = times[k - first];
+      std::sort(t.begin(), t.end());
+      results[k - first].msPerStep = t[t.size() / 2];
+      csv << csvRow(jobs[k], results[k - first]) << '\n';
+    }
+    csv.flush();
+    first = last;
   }
   if (terminal) std::cerr << '\n';
   if (!csv) {

@@ -230,7 +230,7 @@ impulse2d::ShapeDef toShapeDef(const BenchShape& shape) {
 std::vector<SceneSpec> makeScenes(bool quick) {
   const double q = quick ? 0.1 : 1.0;  // quick runs a tenth of the simulated time
   std::vector<SceneSpec> scenes;
-  scenes.push_back(pyramid("pyramid100", 100, quick ? 0.25 : 4.0));
+  scenes.push_back(pyramid("pyramid100", 100, quick ? 0.25 : 2.0));
   scenes.push_back(pyramid("pyramid20", 20, 10.0 * q));
   scenes.push_back(stack(10.0 * q));
   scenes.push_back(massRatio(10.0 * q));
