@@ -276,18 +276,23 @@ int run(const Options& options) {
       engines.push_back(&e);
     }
   }
+  // Per scene: every engine's default row first (they run as one batch, below), then the sweeps.
   std::vector<Job> jobs;
   for (const SceneSpec& scene : scenes) {
     if (!selected(options.scenes, scene.name)) continue;
+    std::vector<Job> sweeps;
     for (const EngineInfo* engine : engines) {
       for (const std::string& solver : engine->solvers) {
         if (!options.solvers.empty() && std::find(options.solvers.begin(), options.solvers.end(),
                                                   solver) == options.solvers.end()) {
           continue;
         }
-        for (const Job& job : jobsFor(*engine, solver, scene, options.full)) jobs.push_back(job);
+        for (const Job& job : jobsFor(*engine, solver, scene, options.full)) {
+          (job.sweep == "default" ? jobs : sweeps).push_back(job);
+        }
       }
     }
+    jobs.insert(jobs.end(), sweeps.begin(), sweeps.end());
   }
   if (jobs.empty()) {
     std::cerr << "impulse2d_bench: nothing matches --scenes, --engines and --solvers\n";
