@@ -50,21 +50,23 @@ uint32_t featureId(uint32_t reference, uint32_t incident, bool flip) {
   return featureA | (featureB << 16);
 }
 
-// A polygon expressed in another shape's frame. Only its `count` vertices and normals are
-// written: the narrow phase runs for every close pair on every step, and copying a full
-// Polygon (16 slots of each, plus its centroid) cost more than the transform itself.
+// A polygon expressed in another shape's frame. Only its `count` vertices are written, and a
+// normal is rotated only when asked for (the incident-edge search of one of the two polygons):
+// the narrow phase runs for every close pair on every step, and copying a whole Polygon (16
+// slots of vertices and of normals) cost more than the transform itself.
 struct PolygonInFrame {
   int count = 0;
   Vec2 vertices[kMaxPolygonVertices];  // left uninitialised beyond count
-  Vec2 normals[kMaxPolygonVertices];
+  const Polygon* source = nullptr;
+  Rot rotation;
+  Vec2 normal(int i) const { return rotation.apply(source->normals[i]); }
 };
 
 void transformInto(const Polygon& polygon, const Transform& xf, PolygonInFrame* out) {
   out->count = polygon.count;
-  for (int i = 0; i < polygon.count; ++i) {
-    out->vertices[i] = xf.apply(polygon.vertices[i]);
-    out->normals[i] = xf.q.apply(polygon.normals[i]);
-  }
+  out->source = &polygon;
+  out->rotation = xf.q;
+  for (int i = 0; i < polygon.count; ++i) out->vertices[i] = xf.apply(polygon.vertices[i]);
 }
 
 struct FaceSeparation {
@@ -131,7 +133,7 @@ Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const T
   int e = 0;
   double minDot = std::numeric_limits<double>::infinity();
   for (int j = 0; j < inc.count; ++j) {
-    const double d = n.dot(inc.normals[j]);
+    const double d = n.dot(inc.normal(j));
     if (d < minDot) {
       minDot = d;
       e = j;
