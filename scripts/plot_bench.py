@@ -75,7 +75,8 @@ def error_axes(ax, rows, scene, column, label, solvers_of):
                       key=lambda r: int(r["velocity_iterations"]))
         xs = [num(r, "ms_per_step") for r in line]
         ys = [max(num(r, column), FLOOR) for r in line]
-        ax.plot(xs, ys, "-o", color=c, markersize=3, label="%s %s" % (engine, solver))
+        ax.plot(xs, ys, "-o", color=c, markersize=3, linewidth=0.8, alpha=0.8,
+                label="%s %s" % (engine, solver))
         for r in line:
             if r["sweep"] == "default":
                 ax.plot(num(r, "ms_per_step"), max(num(r, column), FLOOR), "*", color=c,
@@ -89,7 +90,7 @@ def error_axes(ax, rows, scene, column, label, solvers_of):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("ms per step (median of repeats)")
-    ax.set_ylabel(label)
+    ax.set_ylabel(label + ", 0 drawn at 1e-6")
     ax.set_title(scene)
     ax.grid(True, which="both", alpha=0.3)
 
