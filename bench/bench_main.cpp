@@ -19,8 +19,9 @@ namespace impulse2d_bench {
 namespace {
 
 const char* kUsage =
-    "usage: impulse2d_bench [--quick | --full] [--scenes A,B] [--engines A,B] [--repeats N]\n"
-    "                       [--csv FILE] [--memory-csv FILE]\n"
+    "usage: impulse2d_bench [--quick | --full] [--scenes A,B] [--engines A,B] [--solvers A,B]\n"
+    "                       [--repeats N] [--sweep-repeats N] [--steps N] [--csv FILE]\n"
+    "                       [--memory-csv FILE]\n"
     "  (default)         every scene, each engine and solver at the engine's defaults (60 Hz)\n"
     "  --quick           short runs and a small scaling series (CI smoke test, < 2 min)\n"
     "  --full            sweep velocity iterations, position iterations and the time step\n"
@@ -391,7 +392,7 @@ int main(int argc, char** argv) {
   Options options;
   const std::string why = parseOptions(argc, argv, &options);
   if (!why.empty()) {
-    std::cerr << "impulse2d_bench: " << why << "\n" << kUsage;
+    std::cerr << "impulse2d_bench: " << why << " (--help for usage)\n";
     return 2;
   }
   return run(options);
