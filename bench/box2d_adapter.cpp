@@ -43,7 +43,8 @@ class Box2dAdapter : public EngineAdapter {
         // Regular polygon: moving every edge in by the skin scales it by (apothem - skin) /
         // apothem.
         const size_t n = body.shape.vertices.size();
-        const double apothem = std::cos(M_PI / n) * body.shape.vertices[0].norm();
+        const double apothem =
+            std::cos(impulse2d::kPi / static_cast<double>(n)) * body.shape.vertices[0].norm();
         const double scale = (apothem - skin) / apothem;
         b2Vec2 points[b2_maxPolygonVertices];
         for (size_t i = 0; i < n; ++i) points[i] = toB2(scale * body.shape.vertices[i]);
