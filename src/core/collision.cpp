@@ -50,6 +50,25 @@ uint32_t featureId(uint32_t reference, uint32_t incident, bool flip) {
   return featureA | (featureB << 16);
 }
 
+// A polygon expressed in another shape's frame. Only its `count` vertices are written, and a
+// normal is rotated only when asked for (the incident-edge search of one of the two polygons):
+// the narrow phase runs for every close pair on every step, and copying a whole Polygon (16
+// slots of vertices and of normals) cost more than the transform itself.
+struct PolygonInFrame {
+  int count = 0;
+  Vec2 vertices[kMaxPolygonVertices];  // left uninitialised beyond count
+  const Polygon* source = nullptr;
+  Rot rotation;
+  Vec2 normal(int i) const { return rotation.apply(source->normals[i]); }
+};
+
+void transformInto(const Polygon& polygon, const Transform& xf, PolygonInFrame* out) {
+  out->count = polygon.count;
+  out->source = &polygon;
+  out->rotation = xf.q;
+  for (int i = 0; i < polygon.count; ++i) out->vertices[i] = xf.apply(polygon.vertices[i]);
+}
+
 struct FaceSeparation {
   double separation;
   int edge;
@@ -58,7 +77,7 @@ struct FaceSeparation {
 // The face of `poly` along whose normal `other` (given in poly's frame) is separated the most.
 // For convex polygons the largest such value is the signed distance when positive and minus the
 // penetration depth along face normals when negative.
-FaceSeparation maxFaceSeparation(const Polygon& poly, const Polygon& other) {
+FaceSeparation maxFaceSeparation(const Polygon& poly, const PolygonInFrame& other) {
   FaceSeparation best{-std::numeric_limits<double>::infinity(), 0};
   for (int i = 0; i < poly.count; ++i) {
     double deepest = std::numeric_limits<double>::infinity();
@@ -105,8 +124,8 @@ int clipSegment(const ClipVertex* in, int count, ClipVertex* out, const Vec2& no
 // The reference face itself is not a clipping plane: the clipped points keep their depth as
 // the separation, and those farther than the speculative distance are dropped. `inc` is given
 // in ref's frame; `flip` says that ref is shape B.
-Manifold clipIncidentEdge(const Polygon& ref, const Polygon& inc, const Transform& xfRef, int r,
-                          bool flip, double speculativeDistance) {
+Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const Transform& xfRef,
+                          int r, bool flip, double speculativeDistance) {
   Manifold m;
   const Vec2 n = ref.normals[r];
 
@@ -114,7 +133,7 @@ Manifold clipIncidentEdge(const Polygon& ref, const Polygon& inc, const Transfor
   int e = 0;
   double minDot = std::numeric_limits<double>::infinity();
   for (int j = 0; j < inc.count; ++j) {
-    const double d = n.dot(inc.normals[j]);
+    const double d = n.dot(inc.normal(j));
     if (d < minDot) {
       minDot = d;
       e = j;
@@ -240,10 +259,12 @@ Manifold collidePolygonCircle(const Polygon& a, const Transform& xfA, const Circ
 Manifold collidePolygons(const Polygon& a, const Transform& xfA, const Polygon& b,
                          const Transform& xfB, double speculativeDistance) {
   if (a.count < 3 || b.count < 3) return Manifold();
-  const Polygon bInA = transformed(b, xfA.inverseTimes(xfB));
+  PolygonInFrame bInA;
+  transformInto(b, xfA.inverseTimes(xfB), &bInA);
   const FaceSeparation faceA = maxFaceSeparation(a, bInA);
   if (!(faceA.separation <= speculativeDistance)) return Manifold();
-  const Polygon aInB = transformed(a, xfB.inverseTimes(xfA));
+  PolygonInFrame aInB;
+  transformInto(a, xfB.inverseTimes(xfA), &aInB);
   const FaceSeparation faceB = maxFaceSeparation(b, aInB);
   if (!(faceB.separation <= speculativeDistance)) return Manifold();
 

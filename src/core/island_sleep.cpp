@@ -21,6 +21,14 @@ bool isTouching(const Contact& contact) {
 
 void WorldImpl::updateSleep(double dt) {
   const int slotCount = static_cast<int>(bodies.items.size());
+  if (!def.enableSleep) {
+    // Nothing may sleep, so no islands are needed. Bodies put to sleep before sleeping was
+    // switched off wake up, and stillness counts from zero once it is switched back on.
+    for (int i = 0; i < slotCount; ++i) {
+      if (bodies.alive[i] && bodies.items[i].type == BodyType::Dynamic) wakeBody(bodies.items[i]);
+    }
+    return;
+  }
   const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;
   const double angTol2 = def.sleepAngularTolerance * def.sleepAngularTolerance;
 
@@ -96,7 +104,7 @@ void WorldImpl::updateSleep(double dt) {
         visit(joint.bodyA == index ? joint.bodyB : joint.bodyA);
       }
     }
-    if (!def.enableSleep || minSleepTime < def.timeToSleep) continue;
+    if (minSleepTime < def.timeToSleep) continue;
     for (const int index : island) {
       Body& body = bodies.items[index];
       body.awake = false;

@@ -11,6 +11,7 @@
 
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace impulse2d {
@@ -76,8 +77,11 @@ struct WorldImpl {
   std::vector<int> movedProxies;
   std::vector<char> proxyMoved;  // by proxy id
 
-  std::vector<Contact> contacts;  // solved in this order
-  std::unordered_map<uint64_t, int> contactByKey;
+  std::vector<Contact> contacts;                   // solved in this order
+  std::unordered_map<uint64_t, int> contactByKey;  // key -> index in `contacts`, always current
+  // Reused buffers of findNewContacts, so the step allocates nothing once warm.
+  std::vector<std::pair<int, int>> newPairs;
+  std::vector<Contact> newContacts;
 
   ContactSolver contactSolver;
   // Reused buffers of the island pass (island_sleep.cpp).

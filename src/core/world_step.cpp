@@ -38,7 +38,8 @@ void WorldImpl::updateBroadPhase() {
 }
 
 void WorldImpl::findNewContacts() {
-  std::vector<std::pair<int, int>> pairs;
+  std::vector<std::pair<int, int>>& pairs = newPairs;  // reused: no allocation once warm
+  pairs.clear();
   for (const int proxy : movedProxies) {
     if (!proxyMoved[proxy]) continue;  // destroyed since it moved
     tree.query(tree.fatAabb(proxy), [&](int other) {
@@ -50,7 +51,8 @@ void WorldImpl::findNewContacts() {
   for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
   movedProxies.clear();
 
-  std::vector<Contact> fresh;
+  std::vector<Contact>& fresh = newContacts;
+  fresh.clear();
   for (const auto& [p, q] : pairs) {
     int slotA = static_cast<int>(tree.userData(p) >> 8), shapeA = tree.userData(p) & 0xff;
     int slotB = static_cast<int>(tree.userData(q) >> 8), shapeB = tree.userData(q) & 0xff;
@@ -106,8 +108,11 @@ void WorldImpl::updateContacts() {
           wakeBody(bodies.items[contact.bodyA]);
       }
     }
-    if (write != read) contacts[write] = contact;
-    contactByKey[contacts[write].key] = static_cast<int>(write);
+    // The map already holds every kept contact's index; only those that slid down need a write.
+    if (write != read) {
+      contacts[write] = contact;
+      contactByKey[contacts[write].key] = static_cast<int>(write);
+    }
     ++write;
   }
   contacts.resize(write);

@@ -83,5 +83,28 @@ TEST(Sleep, TeleportingWakesAndSleepCanBeTurnedOff) {
   EXPECT_LT(sleepy.body(other).xf.p.y(), 3.0) << "it falls again";
 }
 
+TEST(Sleep, SwitchingSleepOffWakesSleepersAndTheyStayAwake) {
+  World world;
+  test::addGround(world);
+  const BodyId bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  const BodyId top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  ASSERT_FALSE(world.body(bottom).awake);
+  ASSERT_FALSE(world.body(top).awake);
+  world.settings().enableSleep = false;
+  world.step();
+  EXPECT_TRUE(world.body(bottom).awake);
+  EXPECT_TRUE(world.body(top).awake);
+  stepSeconds(world, 3.0);
+  EXPECT_TRUE(world.body(bottom).awake) << "nothing sleeps while sleeping is off";
+  EXPECT_TRUE(world.body(top).awake);
+  EXPECT_NEAR(world.body(top).center.y(), 1.5, 0.02) << "the stack still rests";
+  world.settings().enableSleep = true;
+  world.step();
+  EXPECT_TRUE(world.body(top).awake) << "stillness counts from zero once sleeping is back on";
+  stepSeconds(world, 3.0);
+  EXPECT_FALSE(world.body(top).awake);
+}
+
 }  // namespace
 }  // namespace impulse2d
