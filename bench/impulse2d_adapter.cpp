@@ -17,7 +17,9 @@ struct SolverEntry {
 // Every solver the benchmark sweeps; the first is the default. A new SolverType is one more line.
 const std::vector<SolverEntry>& solvers() {
   static const std::vector<SolverEntry> list = {
+      {"substep", SolverType::SubstepNgs, true},
       {"ngs", SolverType::NonlinearGaussSeidel, true},
+      {"soft", SolverType::SoftStep, false},
       {"baumgarte", SolverType::Baumgarte, false},
   };
   return list;

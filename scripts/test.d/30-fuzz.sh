@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # libFuzzer harnesses (test/fuzz/fuzz_*.cpp, cmake/fuzz.cmake): builds them in a core-only clang
-# build with ASan + UBSan, then runs each for FUZZ_SECONDS (default 35) from its seed corpus
+# build with ASan + UBSan, then runs each for FUZZ_SECONDS (default 20) from its seed corpus
 # (test/fuzz/corpus/<name without fuzz_>/) with leak detection on. Any crash, leak, sanitizer
 # report, timeout or broken property fails the harness; the input that did it is kept in
 # $STAGE_RESULTS and printed in base64. Writes one JUnit test case per harness.
@@ -10,7 +10,7 @@ set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"
 BUILD="${IMPULSE2D_WS:-/tmp}/build_fuzz"
-SECONDS_EACH="${FUZZ_SECONDS:-35}"
+SECONDS_EACH="${FUZZ_SECONDS:-20}"
 mkdir -p "$STAGE_RESULTS"
 XML="$STAGE_RESULTS/fuzz.xml"
 

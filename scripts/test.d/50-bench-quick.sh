@@ -69,8 +69,8 @@ for r in rows:
         insane.append("%s: %s" % (tag, e))
 check("values in range", not insane, "; ".join(insane[:5]))
 for scene in ("stack20", "pyramid20", "bridge20"):
-    mine = [r for r in rows if r["engine"] == "impulse2d" and r["scene"] == scene and r["solver"] == "ngs"]
-    check("impulse2d ngs stands on " + scene, bool(mine) and all(r["stood"] == "true" for r in mine),
+    mine = [r for r in rows if r["engine"] == "impulse2d" and r["scene"] == scene and r["solver"] == "substep"]
+    check("impulse2d substep stands on " + scene, bool(mine) and all(r["stood"] == "true" for r in mine),
           "did not stand" if mine else "missing")
 
 memory_path = os.path.join(out, "bench_memory.csv")
