@@ -18,26 +18,24 @@ add_link_options(-fsanitize=address,undefined)
 # Defines the harness targets; called once core.cmake's libraries exist.
 function(impulse2d_add_fuzzers)
   # The node's request path without ROS (sim_world.cpp includes no ROS header by design).
-  add_library(impulse2d_fuzz_sim_world STATIC ${PROJECT_SOURCE_DIR}/src/ros/sim_world.cpp)
+  # sim_world_urdf.cpp holds its URDF models (also ROS-free), so it needs impulse2d_urdf.
+  if(NOT TARGET impulse2d_urdf)
+    message(FATAL_ERROR "fuzzers: the node's request path needs the impulse2d_urdf library")
+  endif()
+  add_library(impulse2d_fuzz_sim_world STATIC ${PROJECT_SOURCE_DIR}/src/ros/sim_world.cpp
+    ${PROJECT_SOURCE_DIR}/src/ros/sim_world_urdf.cpp)
   target_include_directories(impulse2d_fuzz_sim_world PUBLIC ${PROJECT_SOURCE_DIR}/src/ros)
-  target_link_libraries(impulse2d_fuzz_sim_world PUBLIC impulse2d_scene)
+  target_link_libraries(impulse2d_fuzz_sim_world PUBLIC impulse2d_scene impulse2d_urdf)
 
   file(GLOB harnesses CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/fuzz/fuzz_*.cpp)
   set(IMPULSE2D_FUZZERS "")
   foreach(source ${harnesses})
     get_filename_component(name ${source} NAME_WE)
-    if(name MATCHES "urdf" AND NOT TARGET impulse2d_urdf)
-      message(WARNING "${name}: no impulse2d_urdf library in the core-only build; not built")
-      continue()
-    endif()
     add_executable(${name} ${source})
     target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test/fuzz
       ${PROJECT_SOURCE_DIR}/src/core ${PROJECT_SOURCE_DIR}/src/scene)
-    target_link_libraries(${name} PRIVATE impulse2d_core impulse2d_scene impulse2d_fuzz_sim_world)
-    # The URDF loader, once it exists as a ROS-free library.
-    if(TARGET impulse2d_urdf)
-      target_link_libraries(${name} PRIVATE impulse2d_urdf)
-    endif()
+    target_link_libraries(${name} PRIVATE impulse2d_core impulse2d_scene impulse2d_urdf
+      impulse2d_fuzz_sim_world)
     target_link_options(${name} PRIVATE -fsanitize=fuzzer)
     list(APPEND IMPULSE2D_FUZZERS ${name})
   endforeach()

@@ -91,6 +91,9 @@ void addContacts(const MarkerInput& in, visualization_msgs::MarkerArray* out) {
   points.color = rgba(1.0f, 0.2f, 0.2f);
   Marker normals = makeMarker(in, "contact_normals", 0, Marker::LINE_LIST);
   normals.color = rgba(1.0f, 0.9f, 0.2f);
+  // A normal at a box's corner runs along the neighbouring edge; seen from above (xy) it is
+  // lifted 2 cm towards the camera so the outline there does not hide it.
+  if (in.plane == Plane::XY) normals.pose.position.z = 0.02;
   for (const ContactSnapshot& c : in.contacts) {
     points.points.push_back(toPoint(in.plane, c.point));
     const double force = std::max(0.0, c.normalImpulse) / in.timeStep;
