@@ -93,22 +93,28 @@ void ContactSolver::warmStart() {
   }
 }
 
+void ContactSolver::solveFriction(ContactConstraint& c) {
+  Body& a = *c.a;
+  Body& b = *c.b;
+  const Vec2 tangent = perp(c.normal);
+  for (int i = 0; i < c.pointCount; ++i) {
+    ContactConstraintPoint& p = c.points[i];
+    const double vt = relativeVelocity(a, b, p.rA, p.rB).dot(tangent);
+    const double maxFriction = c.friction * p.normalImpulse;
+    const double total =
+        std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
+    const double delta = total - p.tangentImpulse;
+    p.tangentImpulse = total;
+    applyImpulse(a, b, p.rA, p.rB, delta * tangent);
+  }
+}
+
 void ContactSolver::solveVelocities() {
   for (ContactConstraint& c : constraints_) {
     Body& a = *c.a;
     Body& b = *c.b;
-    const Vec2 tangent = perp(c.normal);
     // Friction first: non-penetration matters more, so the normal impulse gets the last word.
-    for (int i = 0; i < c.pointCount; ++i) {
-      ContactConstraintPoint& p = c.points[i];
-      const double vt = relativeVelocity(a, b, p.rA, p.rB).dot(tangent);
-      const double maxFriction = c.friction * p.normalImpulse;
-      const double total =
-          std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
-      const double delta = total - p.tangentImpulse;
-      p.tangentImpulse = total;
-      applyImpulse(a, b, p.rA, p.rB, delta * tangent);
-    }
+    solveFriction(c);
     if (c.blockSolve) {
       solveNormalBlock(c);
       continue;

@@ -70,6 +70,8 @@ class ContactSolver {
   void addSubstepImpulses();
 
  private:
+  /// Friction rows of one contact, clamped to the cone of its current normal impulses.
+  static void solveFriction(ContactConstraint& c);
   void solveNormalBlock(ContactConstraint& c);
   void solveSoftNormalBlock(ContactConstraint& c, const double bias[2], const Feedback fb[2]);
 

@@ -54,16 +54,7 @@ void ContactSolver::solveSubstep(double h, bool useBias, double maxPushVelocity)
   for (ContactConstraint& c : constraints_) {
     Body& a = *c.a;
     Body& b = *c.b;
-    const Vec2 tangent = perp(c.normal);
-    for (int i = 0; i < c.pointCount; ++i) {
-      ContactConstraintPoint& p = c.points[i];
-      const double vt = relativeVelocity(a, b, p.rA, p.rB).dot(tangent);
-      const double maxFriction = c.friction * p.normalImpulse;
-      const double total =
-          std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
-      applyImpulse(a, b, p.rA, p.rB, (total - p.tangentImpulse) * tangent);
-      p.tangentImpulse = total;
-    }
+    solveFriction(c);
 
     double bias[2] = {0.0, 0.0};
     Feedback fb[2];
