@@ -1,8 +1,8 @@
-// Small pieces of contact maths shared by the one-pass solvers (contact_solver.cpp) and the soft
-// step (contact_solver_soft.cpp).
+// Small pieces of contact maths shared by the one-pass solvers (contact_solver.cpp) and the
+// sub-stepping solvers (contact_solver_substeps.cpp).
 #pragma once
 
-#include <impulse2d/body.hpp>
+#include "solver_body.hpp"
 
 namespace impulse2d {
 
@@ -10,19 +10,21 @@ namespace impulse2d {
 // nearly coincident points would make it singular, and then the points are solved one by one.
 constexpr double kMaxBlockCondition = 1000.0;
 
-inline double effectiveMass(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB,
-                            const Vec2& dir) {
+inline double effectiveMass(const SolverBody& a, const SolverBody& b, const Vec2& rA,
+                            const Vec2& rB, const Vec2& dir) {
   const double rnA = cross(rA, dir), rnB = cross(rB, dir);
   const double k = a.invMass + b.invMass + a.invInertia * rnA * rnA + b.invInertia * rnB * rnB;
   return k > 0.0 ? 1.0 / k : 0.0;
 }
 
-inline Vec2 relativeVelocity(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB) {
+inline Vec2 relativeVelocity(const SolverBody& a, const SolverBody& b, const Vec2& rA,
+                             const Vec2& rB) {
   return b.linearVelocity + cross(b.angularVelocity, rB) - a.linearVelocity -
          cross(a.angularVelocity, rA);
 }
 
-inline void applyImpulse(Body& a, Body& b, const Vec2& rA, const Vec2& rB, const Vec2& impulse) {
+inline void applyImpulse(SolverBody& a, SolverBody& b, const Vec2& rA, const Vec2& rB,
+                         const Vec2& impulse) {
   a.linearVelocity -= a.invMass * impulse;
   a.angularVelocity -= a.invInertia * cross(rA, impulse);
   b.linearVelocity += b.invMass * impulse;

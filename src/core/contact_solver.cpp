@@ -14,30 +14,25 @@ constexpr double kMaxLinearCorrection = 0.2;
 
 }  // namespace
 
-void syncTransform(Body& body) {
-  body.xf.q = Rot(body.angle);
-  body.xf.p = body.center - body.xf.q.apply(body.localCenter);
-}
-
-void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& bodies,
+void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
                             const WorldDef& def, double dt) {
   constraints_.clear();
   substeps_ = 0;
+  bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
   for (Contact& contact : contacts) {
     const Manifold& m = contact.manifold;
     if (m.pointCount == 0) continue;
-    const Body& bodyA = bodies[contact.bodyA];
-    const Body& bodyB = bodies[contact.bodyB];
-    const bool activeA = bodyA.type == BodyType::Dynamic && bodyA.awake;
-    const bool activeB = bodyB.type == BodyType::Dynamic && bodyB.awake;
-    if (!activeA && !activeB) continue;  // asleep, or resting on something that cannot move
+    // Asleep, or resting on something that cannot move.
+    if (!bodies.isActive(contact.bodyA) && !bodies.isActive(contact.bodyB)) continue;
     ContactConstraint c;
     c.contact = &contact;
-    c.a = &bodies[contact.bodyA];
-    c.b = &bodies[contact.bodyB];
+    c.a = bodies.entryOf(contact.bodyA);
+    c.b = bodies.entryOf(contact.bodyB);
+    const SolverBody& a = bodies[c.a];
+    const SolverBody& b = bodies[c.b];
     c.normal = m.normal;
-    c.localNormal = c.a->xf.q.applyInverse(m.normal);
+    c.localNormal = a.q.applyInverse(m.normal);
     c.friction = contact.friction;
     c.restitution = contact.restitution;
     c.pointCount = m.pointCount;
@@ -45,17 +40,17 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& b
     for (int i = 0; i < m.pointCount; ++i) {
       const ManifoldPoint& mp = m.points[i];
       ContactConstraintPoint& p = c.points[i];
-      p.rA = mp.point - c.a->center;
-      p.rB = mp.point - c.b->center;
+      p.rA = mp.point - a.center;
+      p.rB = mp.point - b.center;
       const Vec2 halfGap = 0.5 * mp.separation * m.normal;
-      p.localA = c.a->xf.q.applyInverse(mp.point - halfGap - c.a->center);
-      p.localB = c.b->xf.q.applyInverse(mp.point + halfGap - c.b->center);
+      p.localA = a.q.applyInverse(mp.point - halfGap - a.center);
+      p.localB = b.q.applyInverse(mp.point + halfGap - b.center);
       p.normalImpulse = contact.normalImpulse[i];
       p.tangentImpulse = contact.tangentImpulse[i];
-      p.normalMass = effectiveMass(*c.a, *c.b, p.rA, p.rB, m.normal);
-      p.tangentMass = effectiveMass(*c.a, *c.b, p.rA, p.rB, tangent);
+      p.normalMass = effectiveMass(a, b, p.rA, p.rB, m.normal);
+      p.tangentMass = effectiveMass(a, b, p.rA, p.rB, tangent);
       p.separation = mp.separation;
-      p.approachVelocity = relativeVelocity(*c.a, *c.b, p.rA, p.rB).dot(m.normal);
+      p.approachVelocity = relativeVelocity(a, b, p.rA, p.rB).dot(m.normal);
       if (mp.separation > 0.0) {
         // Speculative: not touching yet, so the bodies may close the gap within this step.
         p.targetVelocity = -mp.separation / dt;
@@ -69,8 +64,6 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& b
       }
     }
     if (c.pointCount == 2) {
-      const Body& a = *c.a;
-      const Body& b = *c.b;
       const double rn1A = cross(c.points[0].rA, c.normal), rn1B = cross(c.points[0].rB, c.normal);
       const double rn2A = cross(c.points[1].rA, c.normal), rn2B = cross(c.points[1].rB, c.normal);
       const double m = a.invMass + b.invMass;
@@ -84,18 +77,18 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, std::vector<Body>& b
 }
 
 void ContactSolver::warmStart() {
+  SolverBody* bodies = bodies_->data();
   for (ContactConstraint& c : constraints_) {
     const Vec2 tangent = perp(c.normal);
     for (int i = 0; i < c.pointCount; ++i) {
       const ContactConstraintPoint& p = c.points[i];
-      applyImpulse(*c.a, *c.b, p.rA, p.rB, p.normalImpulse * c.normal + p.tangentImpulse * tangent);
+      applyImpulse(bodies[c.a], bodies[c.b], p.rA, p.rB,
+                   p.normalImpulse * c.normal + p.tangentImpulse * tangent);
     }
   }
 }
 
-void ContactSolver::solveFriction(ContactConstraint& c) {
-  Body& a = *c.a;
-  Body& b = *c.b;
+void ContactSolver::solveFriction(ContactConstraint& c, SolverBody& a, SolverBody& b) {
   const Vec2 tangent = perp(c.normal);
   for (int i = 0; i < c.pointCount; ++i) {
     ContactConstraintPoint& p = c.points[i];
@@ -110,13 +103,14 @@ void ContactSolver::solveFriction(ContactConstraint& c) {
 }
 
 void ContactSolver::solveVelocities() {
+  SolverBody* bodies = bodies_->data();
   for (ContactConstraint& c : constraints_) {
-    Body& a = *c.a;
-    Body& b = *c.b;
+    SolverBody& a = bodies[c.a];
+    SolverBody& b = bodies[c.b];
     // Friction first: non-penetration matters more, so the normal impulse gets the last word.
-    solveFriction(c);
+    solveFriction(c, a, b);
     if (c.blockSolve) {
-      solveNormalBlock(c);
+      solveNormalBlock(c, a, b);
       continue;
     }
     for (int i = 0; i < c.pointCount; ++i) {
@@ -134,9 +128,7 @@ void ContactSolver::solveVelocities() {
 
 // Both normal impulses of a two-point manifold at once. Solving the pair exactly removes the
 // left-right bias of one-by-one Gauss-Seidel that makes stacks lean.
-void ContactSolver::solveNormalBlock(ContactConstraint& c) {
-  Body& a = *c.a;
-  Body& b = *c.b;
+void ContactSolver::solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b) {
   ContactConstraintPoint& p1 = c.points[0];
   ContactConstraintPoint& p2 = c.points[1];
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
@@ -154,6 +146,7 @@ void ContactSolver::solveNormalBlock(ContactConstraint& c) {
 }
 
 void ContactSolver::applyRestitution(double threshold) {
+  SolverBody* bodies = bodies_->data();
   for (ContactConstraint& c : constraints_) {
     if (c.restitution == 0.0) continue;
     for (int i = 0; i < c.pointCount; ++i) {
@@ -161,13 +154,15 @@ void ContactSolver::applyRestitution(double threshold) {
       // Only points that pushed: a speculative point the bodies never reached does not bounce.
       if (p.approachVelocity > -threshold || std::max(p.normalImpulse, p.maxNormalImpulse) == 0.0)
         continue;
-      const double vn = relativeVelocity(*c.a, *c.b, p.rA, p.rB).dot(c.normal);
+      SolverBody& a = bodies[c.a];
+      SolverBody& b = bodies[c.b];
+      const double vn = relativeVelocity(a, b, p.rA, p.rB).dot(c.normal);
       const double target = -c.restitution * p.approachVelocity;
       const double total = std::max(p.normalImpulse - p.normalMass * (vn - target), 0.0);
       const double delta = total - p.normalImpulse;
       p.normalImpulse = total;
       p.totalNormalImpulse += delta;
-      applyImpulse(*c.a, *c.b, p.rA, p.rB, delta * c.normal);
+      applyImpulse(a, b, p.rA, p.rB, delta * c.normal);
     }
   }
 }
@@ -184,17 +179,18 @@ void ContactSolver::storeImpulses() {
 }
 
 bool ContactSolver::solvePositions(const WorldDef& def) {
+  SolverBody* bodies = bodies_->data();
   double deepest = 0.0;
   for (ContactConstraint& c : constraints_) {
-    Body& a = *c.a;
-    Body& b = *c.b;
+    SolverBody& a = bodies[c.a];
+    SolverBody& b = bodies[c.b];
     Vec2 normal = Vec2::Zero(), rA[2], rB[2];
     double correction[2];
     // Measures point i at the current (partly corrected) poses.
     auto measure = [&](int i) {
-      normal = a.xf.q.apply(c.localNormal);
-      const Vec2 pointA = a.center + a.xf.q.apply(c.points[i].localA);
-      const Vec2 pointB = b.center + b.xf.q.apply(c.points[i].localB);
+      normal = a.q.apply(c.localNormal);
+      const Vec2 pointA = a.center + a.q.apply(c.points[i].localA);
+      const Vec2 pointB = b.center + b.q.apply(c.points[i].localB);
       const double separation = (pointB - pointA).dot(normal);
       const Vec2 mid = 0.5 * (pointA + pointB);
       rA[i] = mid - a.center;
@@ -209,8 +205,8 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
       a.angle -= a.invInertia * cross(rA[i], impulse);
       b.center += b.invMass * impulse;
       b.angle += b.invInertia * cross(rB[i], impulse);
-      if (a.invMass > 0.0 || a.invInertia > 0.0) syncTransform(a);
-      if (b.invMass > 0.0 || b.invInertia > 0.0) syncTransform(b);
+      if (a.invMass > 0.0 || a.invInertia > 0.0) syncRotation(a);
+      if (b.invMass > 0.0 || b.invInertia > 0.0) syncRotation(b);
     };
     if (c.pointCount == 2) {
       // Both points together, as in the velocity pass: one after the other would tilt the body

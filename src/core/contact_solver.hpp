@@ -5,8 +5,8 @@
 
 #include "contact.hpp"
 #include "feedback.hpp"
+#include "solver_body.hpp"
 
-#include <impulse2d/body.hpp>
 #include <impulse2d/defs.hpp>
 
 #include <vector>
@@ -30,8 +30,7 @@ struct ContactConstraintPoint {
 
 struct ContactConstraint {
   Contact* contact = nullptr;
-  Body* a = nullptr;
-  Body* b = nullptr;
+  int a = -1, b = -1;  // entries in the step's SolverBodies
   Vec2 normal = Vec2::Zero();
   Vec2 localNormal = Vec2::Zero();  // in A's frame, for NGS
   double friction = 0.0, restitution = 0.0;
@@ -46,8 +45,9 @@ struct ContactConstraint {
 
 class ContactSolver {
  public:
-  /// Builds the constraints of the touching (or about to touch) contacts.
-  void prepare(std::vector<Contact>& contacts, std::vector<Body>& bodies, const WorldDef& def,
+  /// Builds the constraints of the touching (or about to touch) contacts of bodies the step moves;
+  /// adds read-only entries to `bodies` for the others they touch.
+  void prepare(std::vector<Contact>& contacts, SolverBodies& bodies, const WorldDef& def,
                double dt);
   void warmStart();
   void solveVelocities();
@@ -71,16 +71,15 @@ class ContactSolver {
 
  private:
   /// Friction rows of one contact, clamped to the cone of its current normal impulses.
-  static void solveFriction(ContactConstraint& c);
-  void solveNormalBlock(ContactConstraint& c);
-  void solveSoftNormalBlock(ContactConstraint& c, const double bias[2], const Feedback fb[2]);
+  static void solveFriction(ContactConstraint& c, SolverBody& a, SolverBody& b);
+  static void solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b);
+  static void solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
+                                   const double bias[2], const Feedback fb[2]);
 
-  int substeps_ = 0;  // 0: a one-pass solver (Baumgarte or NGS)
+  int substeps_ = 0;                // 0: a one-pass solver (Baumgarte or NGS)
+  SolverBodies* bodies_ = nullptr;  // this step's; entries may be added until the solve starts
 
   std::vector<ContactConstraint> constraints_;
 };
-
-/// Keeps xf consistent with the centre of mass and angle after the solver moved them.
-void syncTransform(Body& body);
 
 }  // namespace impulse2d

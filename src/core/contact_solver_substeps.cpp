@@ -21,9 +21,10 @@ namespace {
 // 5050-box pyramid apart (0.19 sways, 0.25 collapses; 0.15 holds it within 3 cm).
 constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 
-double currentSeparation(const ContactConstraint& c, const ContactConstraintPoint& p) {
-  const Vec2 pointA = c.a->center + c.a->xf.q.apply(p.anchorA);
-  const Vec2 pointB = c.b->center + c.b->xf.q.apply(p.anchorB);
+double currentSeparation(const ContactConstraint& c, const ContactConstraintPoint& p,
+                         const SolverBody& a, const SolverBody& b) {
+  const Vec2 pointA = a.center + a.q.apply(p.anchorA);
+  const Vec2 pointB = b.center + b.q.apply(p.anchorB);
   return c.normal.dot(pointB - pointA) + p.separation;
 }
 
@@ -34,14 +35,17 @@ void ContactSolver::prepareSubsteps(const WorldDef& def, int substeps, double h)
   const double hertz = std::min(def.contactHertz, kMaxContactHertzPerSubstepRate / h);
   const Feedback dynamicSoft = springFeedback(hertz, def.contactDampingRatio, h);
   const Feedback staticSoft = springFeedback(2.0 * hertz, def.contactDampingRatio, h);
+  SolverBody* bodies = bodies_->data();
   for (ContactConstraint& c : constraints_) {
-    const bool bothMove = c.a->invMass > 0.0 && c.b->invMass > 0.0;
+    const SolverBody& a = bodies[c.a];
+    const SolverBody& b = bodies[c.b];
+    const bool bothMove = a.invMass > 0.0 && b.invMass > 0.0;
     c.soft = bothMove ? dynamicSoft : staticSoft;
     for (int i = 0; i < c.pointCount; ++i) {
       ContactConstraintPoint& p = c.points[i];
       // prepare() measured the separation with both points at the manifold point.
-      p.anchorA = c.a->xf.q.applyInverse(p.rA);
-      p.anchorB = c.b->xf.q.applyInverse(p.rB);
+      p.anchorA = a.q.applyInverse(p.rA);
+      p.anchorB = b.q.applyInverse(p.rB);
       p.normalImpulse /= substeps;
       p.tangentImpulse /= substeps;
       p.maxNormalImpulse = 0.0;
@@ -51,15 +55,16 @@ void ContactSolver::prepareSubsteps(const WorldDef& def, int substeps, double h)
 }
 
 void ContactSolver::solveSubstep(double h, bool useBias, double maxPushVelocity) {
+  SolverBody* bodies = bodies_->data();
   for (ContactConstraint& c : constraints_) {
-    Body& a = *c.a;
-    Body& b = *c.b;
-    solveFriction(c);
+    SolverBody& a = bodies[c.a];
+    SolverBody& b = bodies[c.b];
+    solveFriction(c, a, b);
 
     double bias[2] = {0.0, 0.0};
     Feedback fb[2];
     for (int i = 0; i < c.pointCount; ++i) {
-      const double s = currentSeparation(c, c.points[i]);
+      const double s = currentSeparation(c, c.points[i], a, b);
       if (s > 0.0) {
         bias[i] = s / h;  // not touching: close the gap within the sub-step, no further
       } else if (useBias) {
@@ -77,7 +82,7 @@ void ContactSolver::solveSubstep(double h, bool useBias, double maxPushVelocity)
       }
     }
     if (c.blockSolve) {
-      solveSoftNormalBlock(c, bias, fb);
+      solveSoftNormalBlock(c, a, b, bias, fb);
     } else {
       for (int i = 0; i < c.pointCount; ++i) {
         ContactConstraintPoint& p = c.points[i];
@@ -98,10 +103,8 @@ void ContactSolver::solveSubstep(double h, bool useBias, double maxPushVelocity)
 //   v_i + bias_i + gamma_i x_i >= 0  (complementary to x_i >= 0),  gamma_i = K_ii s_i / m_i
 // (s = impulseScale, m = massScale), which is the one-row update of feedback.hpp solved
 // exactly; with v = v_now + K (x - x_old) it is the 2x2 LCP  w = (K + diag(gamma)) x + b.
-void ContactSolver::solveSoftNormalBlock(ContactConstraint& c, const double bias[2],
-                                         const Feedback fb[2]) {
-  Body& a = *c.a;
-  Body& b = *c.b;
+void ContactSolver::solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
+                                         const double bias[2], const Feedback fb[2]) {
   ContactConstraintPoint& p1 = c.points[0];
   ContactConstraintPoint& p2 = c.points[1];
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;

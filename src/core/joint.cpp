@@ -1,14 +1,13 @@
 // Joint set-up and the dispatch from the world's solver loop to each joint type.
 #include "joint.hpp"
 
-#include "contact_solver.hpp"  // syncTransform
-
 #include <algorithm>
 #include <cmath>
 
 namespace impulse2d {
 
-Eigen::Matrix2d pointMassMatrix(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB) {
+Eigen::Matrix2d pointMassMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
+                                const Vec2& rB) {
   const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
   Eigen::Matrix2d k;
   k(0, 0) = mA + mB + iA * rA.y() * rA.y() + iB * rB.y() * rB.y();
@@ -23,20 +22,22 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
   return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
 }
 
-void applyJointImpulse(Body& a, Body& b, const Vec2& p, double angularA, double angularB) {
+void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                       double angularB) {
   a.linearVelocity -= a.invMass * p;
   a.angularVelocity -= a.invInertia * angularA;
   b.linearVelocity += b.invMass * p;
   b.angularVelocity += b.invInertia * angularB;
 }
 
-void applyJointCorrection(Body& a, Body& b, const Vec2& p, double angularA, double angularB) {
+void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                          double angularB) {
   a.center -= a.invMass * p;
   a.angle -= a.invInertia * angularA;
   b.center += b.invMass * p;
   b.angle += b.invInertia * angularB;
-  syncTransform(a);
-  syncTransform(b);
+  syncRotation(a);
+  syncRotation(b);
 }
 
 double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb) {
@@ -75,8 +76,8 @@ void initJoint(Joint& joint, const Body& a, const Body& b) {
   }
 }
 
-void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, const Feedback& fb,
-                  double dt) {
+void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def,
+                  const Feedback& fb, double dt) {
   joint.feedback = fb;
   if (!def.warmStarting) {  // the world resets only the impulses every type shares
     joint.angularImpulse = joint.lengthImpulse = 0.0;
@@ -97,7 +98,7 @@ void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, const Fee
   }
 }
 
-void warmStartJoint(Joint& joint, Body& a, Body& b) {
+void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b) {
   switch (joint.def.type) {
     case JointType::Revolute:
       warmStartRevolute(joint, a, b);
@@ -114,7 +115,7 @@ void warmStartJoint(Joint& joint, Body& a, Body& b) {
   }
 }
 
-void solveJointVelocity(Joint& joint, Body& a, Body& b, double dt) {
+void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
   switch (joint.def.type) {
     case JointType::Revolute:
       solveRevoluteVelocity(joint, a, b, dt);
@@ -131,7 +132,7 @@ void solveJointVelocity(Joint& joint, Body& a, Body& b, double dt) {
   }
 }
 
-bool solveJointPosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
   switch (joint.def.type) {
     case JointType::Revolute:
       return solveRevolutePosition(joint, a, b, def);
@@ -146,14 +147,18 @@ bool solveJointPosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
 }
 
 JointState measureJoint(const Joint& joint, const Body& a, const Body& b) {
-  if (joint.def.type == JointType::Prismatic) return measurePrismatic(joint, a, b);
-  if (joint.def.type == JointType::Distance) return measureDistance(joint, a, b);
-  // Revolute and weld: the relative angle.
+  const SolverBody viewA = solverView(a), viewB = solverView(b);
   JointState state;
+  if (joint.def.type == JointType::Prismatic) {
+    state = measurePrismatic(joint, viewA, viewB);
+  } else if (joint.def.type == JointType::Distance) {
+    state = measureDistance(joint, viewA, viewB);
+  } else {  // revolute and weld: the relative angle
+    state.position = b.angle - a.angle - joint.referenceAngle;
+    state.velocity = b.angularVelocity - a.angularVelocity;
+  }
   state.anchorA = a.xf.apply(joint.localAnchorA);
   state.anchorB = b.xf.apply(joint.localAnchorB);
-  state.position = b.angle - a.angle - joint.referenceAngle;
-  state.velocity = b.angularVelocity - a.angularVelocity;
   return state;
 }
 

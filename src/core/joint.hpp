@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "feedback.hpp"
+#include "solver_body.hpp"
 
 namespace impulse2d {
 
@@ -20,7 +21,8 @@ constexpr double kMaxJointLinearCorrection = 0.2;            // m per NGS pass
 struct Joint {
   JointId id;
   JointDef def;
-  int bodyA = -1, bodyB = -1;                                     // slot indices
+  int bodyA = -1, bodyB = -1;    // slot indices
+  int entryA = -1, entryB = -1;  // the bodies' SolverBodies entries, while the step solves it
   Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
   double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
@@ -62,12 +64,12 @@ void initJoint(Joint& joint, const Body& a, const Body& b);
 
 /// Computes the rows of this pass at the bodies' current poses; dt is the pass's time step (the
 /// sub-step for the soft step).
-void prepareJoint(Joint& joint, Body& a, Body& b, const WorldDef& def, const Feedback& fb,
-                  double dt);
-void warmStartJoint(Joint& joint, Body& a, Body& b);
-void solveJointVelocity(Joint& joint, Body& a, Body& b, double dt);
+void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def,
+                  const Feedback& fb, double dt);
+void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b);
+void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
 /// One NGS position pass; returns true when the joint's error is within the slop.
-bool solveJointPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
 JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
 
 // --- shared by the joint types ---
@@ -75,15 +77,18 @@ JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
 /// K = [mA + mB + iA rA.y^2 + iB rB.y^2,   -iA rA.x rA.y - iB rB.x rB.y ]
 ///     [-iA rA.x rA.y - iB rB.x rB.y,      mA + mB + iA rA.x^2 + iB rB.x^2]
 /// maps an impulse at a shared point to the change of the relative velocity there.
-Eigen::Matrix2d pointMassMatrix(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB);
+Eigen::Matrix2d pointMassMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
+                                const Vec2& rB);
 /// The inverse, or zero when K is singular (two bodies that cannot move).
 Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k);
 
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
-void applyJointImpulse(Body& a, Body& b, const Vec2& p, double angularA, double angularB);
+void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                       double angularB);
 /// The same as a position correction (NGS), then syncs both transforms.
-void applyJointCorrection(Body& a, Body& b, const Vec2& p, double angularA, double angularB);
+void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                          double angularB);
 /// Target rate of a one-sided limit row whose position error is c (>= 0 means within): a limit
 /// not yet reached may be approached within the step (speculative, rigid); one already passed is
 /// pushed back with the pass's feedback (none with NGS: its position pass does it). `rowFb`
@@ -103,26 +108,28 @@ struct Softness {
 Softness softness(double frequency, double dampingRatio, double effectiveMass, double dt);
 
 // --- per type ---
-void prepareRevolute(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
-void warmStartRevolute(Joint& joint, Body& a, Body& b);
-void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt);
-bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
+void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b);
+void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
 
-void preparePrismatic(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
-void warmStartPrismatic(Joint& joint, Body& a, Body& b);
-void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt);
-bool solvePrismaticPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
-JointState measurePrismatic(const Joint& joint, const Body& a, const Body& b);
+void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
+void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b);
+void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+/// Position and velocity along the rail (the anchors are measureJoint's).
+JointState measurePrismatic(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
-void prepareWeld(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
-void warmStartWeld(Joint& joint, Body& a, Body& b);
-void solveWeldVelocity(Joint& joint, Body& a, Body& b, double dt);
-bool solveWeldPosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
+void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
+void warmStartWeld(Joint& joint, SolverBody& a, SolverBody& b);
+void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+bool solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
 
-void prepareDistance(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt);
-void warmStartDistance(Joint& joint, Body& a, Body& b);
-void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double dt);
-bool solveDistancePosition(Joint& joint, Body& a, Body& b, const WorldDef& def);
-JointState measureDistance(const Joint& joint, const Body& a, const Body& b);
+void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
+void warmStartDistance(Joint& joint, SolverBody& a, SolverBody& b);
+void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+bool solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+/// Length and its rate (the anchors are measureJoint's).
+JointState measureDistance(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 }  // namespace impulse2d

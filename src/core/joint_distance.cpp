@@ -31,10 +31,10 @@ struct Rod {
   double length, armA, armB;
 };
 
-Rod rodOf(const Joint& j, const Body& a, const Body& b) {
+Rod rodOf(const Joint& j, const SolverBody& a, const SolverBody& b) {
   Rod r;
-  r.rA = a.xf.q.apply(j.localAnchorA - a.localCenter);
-  r.rB = b.xf.q.apply(j.localAnchorB - b.localCenter);
+  r.rA = a.q.apply(j.localAnchorA - a.localCenter);
+  r.rB = b.q.apply(j.localAnchorB - b.localCenter);
   const Vec2 d = (b.center + r.rB) - (a.center + r.rA);
   r.length = d.norm();
   r.axis = r.length > kMinDirectionLength ? Vec2(d / r.length) : Vec2::Zero();
@@ -43,22 +43,23 @@ Rod rodOf(const Joint& j, const Body& a, const Body& b) {
   return r;
 }
 
-double inverseMassOf(const Rod& r, const Body& a, const Body& b) {
+double inverseMassOf(const Rod& r, const SolverBody& a, const SolverBody& b) {
   return a.invMass + b.invMass + a.invInertia * r.armA * r.armA + b.invInertia * r.armB * r.armB;
 }
 
-double lengthRate(const Vec2& axis, double armA, double armB, const Body& a, const Body& b) {
+double lengthRate(const Vec2& axis, double armA, double armB, const SolverBody& a,
+                  const SolverBody& b) {
   return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
          armA * a.angularVelocity;
 }
 
-void applyAxial(const Joint& j, Body& a, Body& b, double impulse) {
+void applyAxial(const Joint& j, SolverBody& a, SolverBody& b, double impulse) {
   applyJointImpulse(a, b, impulse * j.axis, j.axisArmA * impulse, j.axisArmB * impulse);
 }
 
 }  // namespace
 
-void prepareDistance(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
+void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
   const Rod rod = rodOf(joint, a, b);
   joint.rA = rod.rA;
   joint.rB = rod.rB;
@@ -88,11 +89,11 @@ void prepareDistance(Joint& joint, Body& a, Body& b, const Feedback& fb, double 
   }
 }
 
-void warmStartDistance(Joint& joint, Body& a, Body& b) {
+void warmStartDistance(Joint& joint, SolverBody& a, SolverBody& b) {
   applyAxial(joint, a, b, joint.lengthImpulse + joint.lowerImpulse - joint.upperImpulse);
 }
 
-void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
+void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/) {
   auto rate = [&] { return lengthRate(joint.axis, joint.axisArmA, joint.axisArmB, a, b); };
   if (!isSpring(joint)) {
     const Feedback& fb = joint.feedback;
@@ -122,7 +123,7 @@ void solveDistanceVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
   }
 }
 
-bool solveDistancePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+bool solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
   const Rod rod = rodOf(joint, a, b);
   double c = 0.0;
   if (!isSpring(joint)) {
@@ -141,11 +142,9 @@ bool solveDistancePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) 
   return std::abs(c) <= def.linearSlop;
 }
 
-JointState measureDistance(const Joint& joint, const Body& a, const Body& b) {
+JointState measureDistance(const Joint& joint, const SolverBody& a, const SolverBody& b) {
   const Rod rod = rodOf(joint, a, b);
   JointState state;
-  state.anchorA = a.xf.apply(joint.localAnchorA);
-  state.anchorB = b.xf.apply(joint.localAnchorB);
   state.position = rod.length;
   state.velocity = lengthRate(rod.axis, rod.armA, rod.armB, a, b);
   return state;

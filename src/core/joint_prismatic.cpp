@@ -28,19 +28,20 @@ namespace impulse2d {
 namespace {
 
 // Applies impulses on the perpendicular, angular and axial rows (J^T lambda).
-void applyRows(const Joint& j, Body& a, Body& b, double perpendicular, double angular,
+void applyRows(const Joint& j, SolverBody& a, SolverBody& b, double perpendicular, double angular,
                double axial) {
   const Vec2 p = perpendicular * j.normal + axial * j.axis;
   applyJointImpulse(a, b, p, j.normalArmA * perpendicular + angular + j.axisArmA * axial,
                     j.normalArmB * perpendicular + angular + j.axisArmB * axial);
 }
 
-double axialRate(const Vec2& axis, double armA, double armB, const Body& a, const Body& b) {
+double axialRate(const Vec2& axis, double armA, double armB, const SolverBody& a,
+                 const SolverBody& b) {
   return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
          armA * a.angularVelocity;
 }
 
-double axialRate(const Joint& j, const Body& a, const Body& b) {
+double axialRate(const Joint& j, const SolverBody& a, const SolverBody& b) {
   return axialRate(j.axis, j.axisArmA, j.axisArmB, a, b);
 }
 
@@ -51,12 +52,12 @@ struct Rail {
   double axisArmA, axisArmB, normalArmA, normalArmB;
 };
 
-Rail railOf(const Joint& j, const Body& a, const Body& b) {
+Rail railOf(const Joint& j, const SolverBody& a, const SolverBody& b) {
   Rail r;
-  r.rA = a.xf.q.apply(j.localAnchorA - a.localCenter);
-  r.rB = b.xf.q.apply(j.localAnchorB - b.localCenter);
+  r.rA = a.q.apply(j.localAnchorA - a.localCenter);
+  r.rB = b.q.apply(j.localAnchorB - b.localCenter);
   r.d = (b.center + r.rB) - (a.center + r.rA);
-  r.axis = a.xf.q.apply(j.localAxisA);
+  r.axis = a.q.apply(j.localAxisA);
   r.normal = perp(r.axis);
   const Vec2 armA = r.rA + r.d;
   r.axisArmA = cross(armA, r.axis);
@@ -66,7 +67,7 @@ Rail railOf(const Joint& j, const Body& a, const Body& b) {
   return r;
 }
 
-void storeRail(Joint& j, const Rail& r, const Body& a, const Body& b) {
+void storeRail(Joint& j, const Rail& r, const SolverBody& a, const SolverBody& b) {
   j.rA = r.rA;
   j.rB = r.rB;
   j.axis = r.axis;
@@ -79,7 +80,7 @@ void storeRail(Joint& j, const Rail& r, const Body& a, const Body& b) {
   j.angle = b.angle - a.angle - j.referenceAngle;
 }
 
-Eigen::Matrix2d blockMatrix(const Joint& j, const Body& a, const Body& b) {
+Eigen::Matrix2d blockMatrix(const Joint& j, const SolverBody& a, const SolverBody& b) {
   const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
   Eigen::Matrix2d k;
   k(0, 0) = mA + mB + iA * j.normalArmA * j.normalArmA + iB * j.normalArmB * j.normalArmB;
@@ -90,7 +91,7 @@ Eigen::Matrix2d blockMatrix(const Joint& j, const Body& a, const Body& b) {
   return k;
 }
 
-double axialMassOf(const Joint& j, const Body& a, const Body& b) {
+double axialMassOf(const Joint& j, const SolverBody& a, const SolverBody& b) {
   const double k = a.invMass + b.invMass + a.invInertia * j.axisArmA * j.axisArmA +
                    b.invInertia * j.axisArmB * j.axisArmB;
   return k > 0.0 ? 1.0 / k : 0.0;
@@ -98,7 +99,7 @@ double axialMassOf(const Joint& j, const Body& a, const Body& b) {
 
 }  // namespace
 
-void preparePrismatic(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
+void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
   const Rail rail = railOf(joint, a, b);
   storeRail(joint, rail, a, b);
   joint.pointMass = safeInverse(blockMatrix(joint, a, b));
@@ -111,12 +112,12 @@ void preparePrismatic(Joint& joint, Body& a, Body& b, const Feedback& fb, double
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
 
-void warmStartPrismatic(Joint& joint, Body& a, Body& b) {
+void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b) {
   applyRows(joint, a, b, joint.pointImpulse.x(), joint.pointImpulse.y(),
             joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse);
 }
 
-void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt) {
+void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
   const JointDef& def = joint.def;
   if (def.enableMotor) {
     const double maxImpulse = def.maxMotorTorque * dt;  // a force (N) for this joint
@@ -151,7 +152,7 @@ void solvePrismaticVelocity(Joint& joint, Body& a, Body& b, double dt) {
   applyRows(joint, a, b, impulse.x(), impulse.y(), 0.0);
 }
 
-bool solvePrismaticPosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
   storeRail(joint, railOf(joint, a, b), a, b);
   double limitError = 0.0;
   if (joint.def.enableLimit) {
@@ -181,11 +182,9 @@ bool solvePrismaticPosition(Joint& joint, Body& a, Body& b, const WorldDef& def)
   return linearError <= def.linearSlop && angularError <= kAngularSlop;
 }
 
-JointState measurePrismatic(const Joint& joint, const Body& a, const Body& b) {
+JointState measurePrismatic(const Joint& joint, const SolverBody& a, const SolverBody& b) {
   const Rail rail = railOf(joint, a, b);
   JointState state;
-  state.anchorA = a.xf.apply(joint.localAnchorA);
-  state.anchorB = b.xf.apply(joint.localAnchorB);
   state.position = rail.axis.dot(rail.d);
   state.velocity = axialRate(rail.axis, rail.axisArmA, rail.axisArmB, a, b);
   return state;

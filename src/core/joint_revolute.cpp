@@ -9,15 +9,15 @@ namespace impulse2d {
 namespace {
 
 // A pure torque impulse between the two bodies (motor and limit rows).
-void applyAngular(Body& a, Body& b, double impulse) {
+void applyAngular(SolverBody& a, SolverBody& b, double impulse) {
   applyJointImpulse(a, b, Vec2::Zero(), impulse, impulse);
 }
 
 }  // namespace
 
-void prepareRevolute(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
-  joint.rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
-  joint.rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
+void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
+  joint.rA = a.q.apply(joint.localAnchorA - a.localCenter);
+  joint.rB = b.q.apply(joint.localAnchorB - b.localCenter);
   joint.pointMass = safeInverse(pointMassMatrix(a, b, joint.rA, joint.rB));
   const double inertiaSum = a.invInertia + b.invInertia;
   joint.axialMass = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
@@ -31,13 +31,13 @@ void prepareRevolute(Joint& joint, Body& a, Body& b, const Feedback& fb, double 
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
 
-void warmStartRevolute(Joint& joint, Body& a, Body& b) {
+void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
   const Vec2& p = joint.pointImpulse;
   const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
   applyJointImpulse(a, b, p, cross(joint.rA, p) + axial, cross(joint.rB, p) + axial);
 }
 
-void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt) {
+void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
   const JointDef& def = joint.def;
   if (def.enableMotor) {
     const double cdot = b.angularVelocity - a.angularVelocity - def.motorSpeed;
@@ -70,7 +70,7 @@ void solveRevoluteVelocity(Joint& joint, Body& a, Body& b, double dt) {
   applyJointImpulse(a, b, impulse, cross(joint.rA, impulse), cross(joint.rB, impulse));
 }
 
-bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
+bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
   double angularError = 0.0;
   if (joint.def.enableLimit && joint.axialMass > 0.0) {
     const double angle = b.angle - a.angle - joint.referenceAngle;
@@ -82,8 +82,8 @@ bool solveRevolutePosition(Joint& joint, Body& a, Body& b, const WorldDef& def) 
     const double impulse = -joint.axialMass * c;
     applyJointCorrection(a, b, Vec2::Zero(), impulse, impulse);
   }
-  const Vec2 rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
-  const Vec2 rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
+  const Vec2 rA = a.q.apply(joint.localAnchorA - a.localCenter);
+  const Vec2 rB = b.q.apply(joint.localAnchorB - b.localCenter);
   Vec2 c = (b.center + rB) - (a.center + rA);
   const double linearError = c.norm();
   if (linearError > kMaxJointLinearCorrection) c *= kMaxJointLinearCorrection / linearError;

@@ -24,7 +24,8 @@ namespace {
 
 bool isSoft(const Joint& joint) { return joint.def.frequency > 0.0; }
 
-Eigen::Matrix3d blockMatrix(const Body& a, const Body& b, const Vec2& rA, const Vec2& rB) {
+Eigen::Matrix3d blockMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
+                            const Vec2& rB) {
   const double iA = a.invInertia, iB = b.invInertia;
   Eigen::Matrix3d k;
   k.topLeftCorner<2, 2>() = pointMassMatrix(a, b, rA, rB);
@@ -41,20 +42,21 @@ Eigen::Matrix3d safeInverse3(const Eigen::Matrix3d& k) {
   return det != 0.0 ? Eigen::Matrix3d(k.inverse()) : Eigen::Matrix3d::Zero();
 }
 
-void applyPointAndAngle(const Joint& j, Body& a, Body& b, const Vec2& p, double angular) {
+void applyPointAndAngle(const Joint& j, SolverBody& a, SolverBody& b, const Vec2& p,
+                        double angular) {
   applyJointImpulse(a, b, p, cross(j.rA, p) + angular, cross(j.rB, p) + angular);
 }
 
-Vec2 pointRate(const Joint& j, const Body& a, const Body& b) {
+Vec2 pointRate(const Joint& j, const SolverBody& a, const SolverBody& b) {
   return b.linearVelocity + cross(b.angularVelocity, j.rB) - a.linearVelocity -
          cross(a.angularVelocity, j.rA);
 }
 
 }  // namespace
 
-void prepareWeld(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) {
-  joint.rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
-  joint.rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
+void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
+  joint.rA = a.q.apply(joint.localAnchorA - a.localCenter);
+  joint.rB = b.q.apply(joint.localAnchorB - b.localCenter);
   joint.angle = b.angle - a.angle - joint.referenceAngle;
   const Eigen::Matrix3d k = blockMatrix(a, b, joint.rA, joint.rB);
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
@@ -75,11 +77,11 @@ void prepareWeld(Joint& joint, Body& a, Body& b, const Feedback& fb, double dt) 
   }
 }
 
-void warmStartWeld(Joint& joint, Body& a, Body& b) {
+void warmStartWeld(Joint& joint, SolverBody& a, SolverBody& b) {
   applyPointAndAngle(joint, a, b, joint.pointImpulse, joint.angularImpulse);
 }
 
-void solveWeldVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
+void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/) {
   if (isSoft(joint)) {
     // Cdot + biasRate C + gamma L = -dL / m, with L the accumulated spring impulse.
     const double cdot = b.angularVelocity - a.angularVelocity;
@@ -110,9 +112,9 @@ void solveWeldVelocity(Joint& joint, Body& a, Body& b, double /*dt*/) {
   applyPointAndAngle(joint, a, b, point, impulse.z());
 }
 
-bool solveWeldPosition(Joint& joint, Body& a, Body& b, const WorldDef& def) {
-  const Vec2 rA = a.xf.q.apply(joint.localAnchorA - a.localCenter);
-  const Vec2 rB = b.xf.q.apply(joint.localAnchorB - b.localCenter);
+bool solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
+  const Vec2 rA = a.q.apply(joint.localAnchorA - a.localCenter);
+  const Vec2 rB = b.q.apply(joint.localAnchorB - b.localCenter);
   Vec2 gap = (b.center + rB) - (a.center + rA);
   const double linearError = gap.norm();
   if (linearError > kMaxJointLinearCorrection) gap *= kMaxJointLinearCorrection / linearError;

@@ -6,6 +6,7 @@
 #include "contact_solver.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
+#include "solver_body.hpp"
 
 #include <impulse2d/world.hpp>
 
@@ -56,6 +57,11 @@ struct Slots {
 
 /// A body the solver moves this step: dynamic and awake.
 inline bool isActive(const Body& body) { return body.type == BodyType::Dynamic && body.awake; }
+/// Keeps xf consistent with the centre of mass and angle after a body was moved.
+inline void syncTransform(Body& body) {
+  body.xf.q = Rot(body.angle);
+  body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+}
 /// A body whose motion can disturb others: awake and not static.
 inline bool isMoving(const Body& body) {
   return body.type == BodyType::Dynamic
@@ -83,6 +89,7 @@ struct WorldImpl {
   std::vector<std::pair<int, int>> newPairs;
   std::vector<Contact> newContacts;
 
+  SolverBodies solverBodies;  // stages 4-6 and 8 work on these, not on `bodies`
   ContactSolver contactSolver;
   // Reused buffers of the island pass (island_sleep.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
@@ -130,10 +137,14 @@ struct WorldImpl {
   void integrateVelocities(double dt);
   void solve(double dt);
   void solveSubsteps(double dt);
+  /// Lists the joints of bodies the step moves, with their solver entries.
   void collectActiveJoints();
   /// Prepares the active joints for a pass of time step dt with the given feedback.
   void prepareJoints(const Feedback& fb, double dt);
-  /// Moves awake bodies with their velocities over h (no continuous collision bookkeeping).
+  void warmStartJoints();
+  void solveJointVelocities(double dt);
+  /// Moves the moving solver bodies with their velocities over h (no continuous collision
+  /// bookkeeping).
   void moveBodies(double h);
   void integratePositions(double dt);
   void solveContinuous();

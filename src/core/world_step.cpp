@@ -13,6 +13,7 @@ void World::step() {
   w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
   w.findNewContacts();   // 2. newly overlapping pairs become arbiters
   w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
+  w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
   if (usesSubsteps(w.def.solver)) {
     w.solveSubsteps(dt);  // 4-6 in sub-steps (world_substeps.cpp)
   } else {
@@ -20,6 +21,7 @@ void World::step() {
     w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
     w.integratePositions(dt);   // 6. move with the solved velocities
   }
+  w.solverBodies.storeMotion(w.bodies.items);
   w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
   w.correctPositions();   // 8. NGS solvers only: push remaining overlaps apart
   w.updateSleep(dt);      // 9. islands still for long enough fall asleep
@@ -129,14 +131,14 @@ double WorldImpl::speculativeMargin(const Body& a, const Body& b) const {
 }
 
 void WorldImpl::integrateVelocities(double dt) {
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    Body& body = bodies.items[i];
-    if (!bodies.alive[i] || body.type != BodyType::Dynamic || !body.awake) continue;
-    body.linearVelocity += dt * (def.gravity + body.invMass * body.force);
-    body.angularVelocity += dt * body.invInertia * body.torque;
+  for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
+    SolverBody& body = solverBodies[e];
+    const SolverBodyLoad& load = solverBodies.load(e);
+    body.linearVelocity += dt * (def.gravity + body.invMass * load.force);
+    body.angularVelocity += dt * body.invInertia * load.torque;
     // Implicit damping: stable for any damping coefficient and time step.
-    body.linearVelocity *= 1.0 / (1.0 + dt * body.linearDamping);
-    body.angularVelocity *= 1.0 / (1.0 + dt * body.angularDamping);
+    body.linearVelocity *= 1.0 / (1.0 + dt * load.linearDamping);
+    body.angularVelocity *= 1.0 / (1.0 + dt * load.angularDamping);
   }
 }
 
@@ -145,8 +147,10 @@ void WorldImpl::collectActiveJoints() {
   for (size_t j = 0; j < joints.items.size(); ++j) {
     if (!joints.alive[j]) continue;
     Joint& joint = joints.items[j];
-    if (!isActive(bodies.items[joint.bodyA]) && !isActive(bodies.items[joint.bodyB])) continue;
+    if (!solverBodies.isActive(joint.bodyA) && !solverBodies.isActive(joint.bodyB)) continue;
     activeJoints.push_back(static_cast<int>(j));
+    joint.entryA = solverBodies.entryOf(joint.bodyA);
+    joint.entryB = solverBodies.entryOf(joint.bodyB);
     if (!def.warmStarting) {
       joint.pointImpulse.setZero();
       joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
@@ -157,29 +161,37 @@ void WorldImpl::collectActiveJoints() {
 void WorldImpl::prepareJoints(const Feedback& fb, double dt) {
   for (const int j : activeJoints) {
     Joint& joint = joints.items[j];
-    prepareJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def, fb, dt);
+    prepareJoint(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], def, fb, dt);
+  }
+}
+
+void WorldImpl::warmStartJoints() {
+  for (const int j : activeJoints) {
+    Joint& joint = joints.items[j];
+    warmStartJoint(joint, solverBodies[joint.entryA], solverBodies[joint.entryB]);
+  }
+}
+
+void WorldImpl::solveJointVelocities(double dt) {
+  for (const int j : activeJoints) {
+    Joint& joint = joints.items[j];
+    solveJointVelocity(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], dt);
   }
 }
 
 void WorldImpl::solve(double dt) {
-  contactSolver.prepare(contacts, bodies.items, def, dt);
   collectActiveJoints();
+  contactSolver.prepare(contacts, solverBodies, def, dt);
   Feedback fb;  // NGS: no bias, its position pass corrects the drift
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
   prepareJoints(fb, dt);
 
   // Warm start: apply last step's impulses first, so the iterations only refine them.
-  for (const int j : activeJoints) {
-    Joint& joint = joints.items[j];
-    warmStartJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB]);
-  }
+  warmStartJoints();
   contactSolver.warmStart();
 
   for (int iteration = 0; iteration < def.velocityIterations; ++iteration) {
-    for (const int j : activeJoints) {
-      Joint& joint = joints.items[j];
-      solveJointVelocity(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], dt);
-    }
+    solveJointVelocities(dt);
     contactSolver.solveVelocities();
   }
   contactSolver.applyRestitution(def.restitutionThreshold);
@@ -187,23 +199,25 @@ void WorldImpl::solve(double dt) {
 }
 
 void WorldImpl::integratePositions(double dt) {
+  solverBodies.holdKinematicVelocities();
   fastBodies.clear();
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    Body& body = bodies.items[i];
-    if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+  for (int e = 0; e < solverBodies.movingCount(); ++e) {
+    SolverBody& body = solverBodies[e];
     const Vec2 move = dt * body.linearVelocity;
     const double turn = dt * body.angularVelocity;
-    // A body that moves less than a quarter of its own thickness in a step cannot skip past
-    // anything as thick as itself, and its speculative contacts catch it before it sinks deep;
-    // faster ones get the continuous pass.
-    const double reach = move.norm() + std::abs(turn) * body.maxExtent;
-    if (body.type == BodyType::Dynamic &&
-        reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
-      fastBodies.push_back({static_cast<int>(i), body.center, body.angle});
+    if (solverBodies.isDynamic(e)) {
+      // A body that moves less than a quarter of its own thickness in a step cannot skip past
+      // anything as thick as itself, and its speculative contacts catch it before it sinks
+      // deep; faster ones get the continuous pass.
+      const Body& shape = bodies.items[solverBodies.slotOf(e)];
+      const double reach = move.norm() + std::abs(turn) * shape.maxExtent;
+      if (reach > std::max(def.speculativeDistance, 0.25 * shape.minExtent)) {
+        fastBodies.push_back({solverBodies.slotOf(e), body.center, body.angle});
+      }
     }
     body.center += move;
     body.angle += turn;
-    syncTransform(body);
+    syncRotation(body);
   }
 }
 
@@ -211,16 +225,18 @@ void WorldImpl::correctPositions() {
   if (def.solver != SolverType::NonlinearGaussSeidel && def.solver != SolverType::SubstepNgs) {
     return;
   }
+  solverBodies.loadPoses(bodies.items);  // continuous collision may have moved some
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;
     for (const int j : activeJoints) {
       Joint& joint = joints.items[j];
       jointsOk &=
-          solveJointPosition(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], def);
+          solveJointPosition(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], def);
     }
     const bool contactsOk = contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;
   }
+  solverBodies.storeDynamicPoses(bodies.items);
 }
 
 void WorldImpl::clearForces() {

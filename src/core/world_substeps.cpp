@@ -25,12 +25,12 @@ constexpr double kMaxJointHertzPerSubstepRate = 0.25;
 }  // namespace
 
 void WorldImpl::moveBodies(double h) {
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    Body& body = bodies.items[i];
-    if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+  solverBodies.holdKinematicVelocities();
+  for (int e = 0; e < solverBodies.movingCount(); ++e) {
+    SolverBody& body = solverBodies[e];
     body.center += h * body.linearVelocity;
     body.angle += h * body.angularVelocity;
-    syncTransform(body);
+    syncRotation(body);
   }
 }
 
@@ -40,16 +40,13 @@ void WorldImpl::solveSubsteps(double dt) {
   const bool soft = def.solver == SolverType::SoftStep;
 
   stepStart.clear();
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    const Body& body = bodies.items[i];
-    if (bodies.alive[i] && isActive(body)) {
-      stepStart.push_back({static_cast<int>(i), body.center, body.angle});
-    }
+  for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
+    stepStart.push_back({solverBodies.slotOf(e), solverBodies[e].center, solverBodies[e].angle});
   }
 
-  contactSolver.prepare(contacts, bodies.items, def, dt);
-  contactSolver.prepareSubsteps(def, substeps, h);
   collectActiveJoints();
+  contactSolver.prepare(contacts, solverBodies, def, dt);
+  contactSolver.prepareSubsteps(def, substeps, h);
   const Feedback rigid;  // no bias
   const Feedback jointSpring = springFeedback(
       std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h), def.jointDampingRatio, h);
@@ -57,15 +54,9 @@ void WorldImpl::solveSubsteps(double dt) {
   for (int substep = 0; substep < substeps; ++substep) {
     integrateVelocities(h);
     prepareJoints(soft ? jointSpring : rigid, h);
-    for (const int j : activeJoints) {
-      Joint& joint = joints.items[j];
-      warmStartJoint(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB]);
-    }
+    warmStartJoints();
     contactSolver.warmStart();
-    for (const int j : activeJoints) {
-      Joint& joint = joints.items[j];
-      solveJointVelocity(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], h);
-    }
+    solveJointVelocities(h);
     contactSolver.solveSubstep(h, soft, def.maxPushVelocity);
 
     moveBodies(h);
@@ -74,10 +65,7 @@ void WorldImpl::solveSubsteps(double dt) {
     // for both it is what keeps warm-started sub-steps stable (with one iteration per sub-step
     // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
     prepareJoints(rigid, h);
-    for (const int j : activeJoints) {
-      Joint& joint = joints.items[j];
-      solveJointVelocity(joint, bodies.items[joint.bodyA], bodies.items[joint.bodyB], h);
-    }
+    solveJointVelocities(h);
     contactSolver.solveSubstep(h, false, def.maxPushVelocity);
     contactSolver.addSubstepImpulses();
   }
@@ -86,11 +74,13 @@ void WorldImpl::solveSubsteps(double dt) {
 
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.
   fastBodies.clear();
-  for (const FastBody& start : stepStart) {
-    const Body& body = bodies.items[start.slot];
+  for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
+    const FastBody& start = stepStart[e];
+    const SolverBody& body = solverBodies[e];
+    const Body& shape = bodies.items[start.slot];
     const double reach = (body.center - start.startCenter).norm() +
-                         std::abs(body.angle - start.startAngle) * body.maxExtent;
-    if (reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
+                         std::abs(body.angle - start.startAngle) * shape.maxExtent;
+    if (reach > std::max(def.speculativeDistance, 0.25 * shape.minExtent)) {
       fastBodies.push_back(start);
     }
   }

@@ -6,6 +6,7 @@
 #include <impulse2d/world.hpp>
 
 #include <string>
+#include <utility>
 
 #include "test_scenes.hpp"
 
@@ -183,6 +184,41 @@ TEST(WorldBounds, BodiesLeavingTheWorldAreRemovedAndReported) {
   }
   for (int i = 0; i < 10; ++i) world.step();
   EXPECT_EQ(world.bodyCount(), 2u);
+}
+
+// The solver works on its own copy of the moving bodies and writes back only those: whatever a
+// body whose velocity overflowed does to the impulses of its contacts and joints, the static and
+// kinematic bodies it touches keep their exact poses and velocities.
+TEST(WorldBounds, NonFiniteImpulsesNeverReachStaticOrKinematicBodies) {
+  for (const SolverType solver : {SolverType::SubstepNgs, SolverType::NonlinearGaussSeidel,
+                                  SolverType::SoftStep, SolverType::Baumgarte}) {
+    World world;
+    world.settings().solver = solver;
+    const BodyId ground = addBox(world, "ground", Vec2(0.0, -0.5), 10.0, 1.0, BodyType::Static);
+    const BodyId wall = addBox(world, "wall", Vec2(1.0, 0.5), 1.0, 1.0, BodyType::Kinematic);
+    ASSERT_TRUE(world.setVelocity(wall, Vec2::Zero(), 0.0));
+    // Resting on the ground, touching the wall, pinned to the ground.
+    const BodyId feather = addLightBox(world, "feather", Vec2(0.0, 0.5), 1e-300);
+    JointDef pin;
+    pin.bodyA = ground;
+    pin.bodyB = feather;
+    pin.anchor = Vec2(0.0, 0.0);
+    ASSERT_TRUE(world.createJoint(pin).valid());
+    world.step();  // the contacts and the joint are in the solver from now on
+    const Body groundBefore = world.body(ground), wallBefore = world.body(wall);
+    ASSERT_TRUE(world.applyForce(feather, Vec2(0.5, -0.5) * kMaxForce, Vec2(0.3, 0.9)));
+    world.step();
+    EXPECT_FALSE(world.isValid(feather)) << "removed as no longer finite";
+    for (const auto& [id, before] : {std::pair{ground, groundBefore}, {wall, wallBefore}}) {
+      ASSERT_TRUE(world.isValid(id)) << before.name;
+      const Body& after = world.body(id);
+      EXPECT_EQ(after.center, before.center) << before.name;
+      EXPECT_EQ(after.angle, before.angle) << before.name;
+      EXPECT_EQ(after.xf.p, before.xf.p) << before.name;
+      EXPECT_EQ(after.linearVelocity, before.linearVelocity) << before.name;
+      EXPECT_EQ(after.angularVelocity, before.angularVelocity) << before.name;
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,105 @@
+// The solver's working copy of the bodies for one step. Constraints reach their bodies through
+// indices into one contiguous array of the few numbers an iteration needs, instead of through
+// Body (about 300 bytes with its name, shapes and proxies), so a pass over the contacts touches
+// one or two cache lines per body.
+//
+//   [ awake dynamic ... | awake kinematic ... | read-only: static or asleep, added on demand ]
+//   0                   dynamicCount          movingCount                                  size
+//
+// Only the moving part is ever written back to the bodies, and only dynamic bodies take back a
+// velocity: nothing the solver computes (not even a NaN from a non-finite impulse) can reach a
+// static body, and a pile resting on a static ground never reads the ground's Body again.
+#pragma once
+
+#include <impulse2d/body.hpp>
+
+#include <limits>
+#include <vector>
+
+namespace impulse2d {
+
+struct SolverBody {
+  Vec2 linearVelocity = Vec2::Zero();  // m/s of the centre of mass
+  double angularVelocity = 0.0;
+  double invMass = 0.0, invInertia = 0.0;  // 0 for the read-only and kinematic entries
+  Vec2 center = Vec2::Zero();              // centre of mass
+  double angle = 0.0;
+  Rot q;  // == Rot(angle)
+  Vec2 localCenter = Vec2::Zero();
+};
+
+/// What integrating a dynamic body's velocity needs besides the SolverBody (read once a step),
+/// and a kinematic body's prescribed velocity, which no impulse may change.
+struct SolverBodyLoad {
+  Vec2 force = Vec2::Zero();
+  double torque = 0.0;
+  double linearDamping = 0.0, angularDamping = 0.0;
+  Vec2 linearVelocity = Vec2::Zero();
+  double angularVelocity = 0.0;
+};
+
+/// A body as the solver sees it, velocity and masses included.
+inline SolverBody solverView(const Body& body) {
+  SolverBody e;
+  e.linearVelocity = body.linearVelocity;
+  e.angularVelocity = body.angularVelocity;
+  e.invMass = body.invMass;
+  e.invInertia = body.invInertia;
+  e.center = body.center;
+  e.angle = body.angle;
+  e.q = body.xf.q;
+  e.localCenter = body.localCenter;
+  return e;
+}
+
+/// Keeps q consistent with angle after the solver turned a body.
+inline void syncRotation(SolverBody& body) { body.q = Rot(body.angle); }
+
+class SolverBodies {
+ public:
+  /// Starts a step: one entry for every living, awake, non-static body (dynamic first), in slot
+  /// order. Entries of other bodies are added by entryOf() as constraints need them.
+  void gather(const std::vector<Body>& bodies, const std::vector<char>& alive);
+  /// The entry of the body in `slot`, or -1 when the step does not move it.
+  int movingEntryOf(int slot) const {
+    return indexOfSlot_[slot] < movingCount_ ? indexOfSlot_[slot] : -1;
+  }
+  /// The entry of the body in `slot`, adding a read-only one (no velocity, infinite mass, its
+  /// pose) for a body the step does not move.
+  int entryOf(int slot);
+  bool isDynamic(int entry) const { return entry < dynamicCount_; }
+  /// Whether the step moves the body in `slot` as a dynamic body (awake).
+  bool isActive(int slot) const { return indexOfSlot_[slot] < dynamicCount_; }
+
+  SolverBody& operator[](int entry) { return entries_[entry]; }
+  const SolverBody& operator[](int entry) const { return entries_[entry]; }
+  SolverBody* data() { return entries_.data(); }
+  int dynamicCount() const { return dynamicCount_; }
+  int movingCount() const { return movingCount_; }
+  int slotOf(int entry) const { return slots_[entry]; }
+  const SolverBodyLoad& load(int entry) const { return loads_[entry]; }
+
+  /// Gives the kinematic entries their prescribed velocities back: impulses cannot change them
+  /// (infinite mass) unless they are not finite, and then they must not move the body.
+  void holdKinematicVelocities();
+  /// Writes the poses of the moving entries, and the velocities of the dynamic ones, back.
+  void storeMotion(std::vector<Body>& bodies) const;
+  /// Re-reads the poses of the moving entries (after continuous collision moved bodies).
+  void loadPoses(const std::vector<Body>& bodies);
+  /// Writes the poses of the dynamic entries back (position passes move only those).
+  void storeDynamicPoses(std::vector<Body>& bodies) const { storePoses(bodies, dynamicCount_); }
+
+ private:
+  void add(const Body& body, int slot, bool readOnly);
+  void storePoses(std::vector<Body>& bodies, int count) const;
+
+  const std::vector<Body>* bodies_ = nullptr;
+  std::vector<SolverBody> entries_;
+  std::vector<SolverBodyLoad> loads_;  // by entry, for the dynamic ones
+  std::vector<int> slots_;             // by entry
+  static constexpr int kNone = std::numeric_limits<int>::max();
+  std::vector<int> indexOfSlot_;  // by body slot; kNone when the body has no entry
+  int dynamicCount_ = 0, movingCount_ = 0;
+};
+
+}  // namespace impulse2d
