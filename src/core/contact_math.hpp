@@ -1,5 +1,11 @@
 // Small pieces of contact maths shared by the one-pass solvers (contact_solver.cpp) and the
-// sub-stepping solvers (contact_solver_substeps.cpp).
+// sub-stepping solvers (contact_solver_substeps.cpp). A row along the unit direction d at a point
+// r_A, r_B from the centres of mass is described by its lever arms armA = cross(rA, d) and
+// armB = cross(rB, d).
+//
+// The iterations are written on scalars: a Vec2 built from two scalars and then used in packed
+// (SSE2) arithmetic is stored as two halves and loaded as one, which the CPU cannot forward
+// from its store buffer, and in the sub-step solver that stall was half of the time.
 #pragma once
 
 #include "solver_body.hpp"
@@ -10,41 +16,47 @@ namespace impulse2d {
 // nearly coincident points would make it singular, and then the points are solved one by one.
 constexpr double kMaxBlockCondition = 1000.0;
 
-inline double effectiveMass(const SolverBody& a, const SolverBody& b, const Vec2& rA,
-                            const Vec2& rB, const Vec2& dir) {
-  const double rnA = cross(rA, dir), rnB = cross(rB, dir);
-  const double k = a.invMass + b.invMass + a.invInertia * rnA * rnA + b.invInertia * rnB * rnB;
+/// 1 / (J M^-1 J^T) of a row, or 0 when neither body can move along it.
+inline double rowMass(const SolverBody& a, const SolverBody& b, double armA, double armB) {
+  const double k = a.invMass + b.invMass + a.invInertia * armA * armA + b.invInertia * armB * armB;
   return k > 0.0 ? 1.0 / k : 0.0;
 }
 
-inline Vec2 relativeVelocity(const SolverBody& a, const SolverBody& b, const Vec2& rA,
-                             const Vec2& rB) {
-  return b.linearVelocity + cross(b.angularVelocity, rB) - a.linearVelocity -
-         cross(a.angularVelocity, rA);
+/// The speed of B relative to A along (dx, dy) at the point.
+inline double rowSpeed(const SolverBody& a, const SolverBody& b, double dx, double dy, double armA,
+                       double armB) {
+  return dx * (b.linearVelocity.x() - a.linearVelocity.x()) +
+         dy * (b.linearVelocity.y() - a.linearVelocity.y()) + b.angularVelocity * armB -
+         a.angularVelocity * armA;
 }
 
-inline void applyImpulse(SolverBody& a, SolverBody& b, const Vec2& rA, const Vec2& rB,
-                         const Vec2& impulse) {
-  a.linearVelocity -= a.invMass * impulse;
-  a.angularVelocity -= a.invInertia * cross(rA, impulse);
-  b.linearVelocity += b.invMass * impulse;
-  b.angularVelocity += b.invInertia * cross(rB, impulse);
+/// The impulse `amount` along (dx, dy) at the point on B, and its reaction on A.
+inline void applyRowImpulse(SolverBody& a, SolverBody& b, double dx, double dy, double armA,
+                            double armB, double amount) {
+  const double pa = a.invMass * amount, pb = b.invMass * amount;
+  a.linearVelocity.x() -= pa * dx;
+  a.linearVelocity.y() -= pa * dy;
+  a.angularVelocity -= a.invInertia * armA * amount;
+  b.linearVelocity.x() += pb * dx;
+  b.linearVelocity.y() += pb * dy;
+  b.angularVelocity += b.invInertia * armB * amount;
 }
 
 // The 2x2 linear complementarity problem  w = K x + b,  x >= 0,  w >= 0,  x_i w_i = 0  has few
 // enough cases to try them all: both rows active, only the first, only the second, neither.
-// Returns false when none fits (round-off on a nearly degenerate pair).
-inline bool solveTwoPointLcp(double k11, double k12, double k22, double b1, double b2, double* x1,
+// `inverse` is K^-1 (symmetric) and mass1, mass2 are 1 / K11, 1 / K22. Returns false when none
+// fits (round-off on a nearly degenerate pair).
+inline bool solveTwoPointLcp(double k12, double inverse11, double inverse12, double inverse22,
+                             double mass1, double mass2, double b1, double b2, double* x1,
                              double* x2) {
-  const double det = k11 * k22 - k12 * k12;  // > 0: only well-conditioned pairs come here
-  double y1 = -(k22 * b1 - k12 * b2) / det;
-  double y2 = -(k11 * b2 - k12 * b1) / det;
+  double y1 = -(inverse11 * b1 + inverse12 * b2);
+  double y2 = -(inverse12 * b1 + inverse22 * b2);
   if (!(y1 >= 0.0 && y2 >= 0.0)) {
-    y1 = -b1 / k11;
+    y1 = -b1 * mass1;
     y2 = 0.0;
     if (!(y1 >= 0.0 && k12 * y1 + b2 >= 0.0)) {
       y1 = 0.0;
-      y2 = -b2 / k22;
+      y2 = -b2 * mass2;
       if (!(y2 >= 0.0 && k12 * y2 + b1 >= 0.0)) {
         y1 = y2 = 0.0;
         if (!(b1 >= 0.0 && b2 >= 0.0)) return false;
@@ -54,6 +66,14 @@ inline bool solveTwoPointLcp(double k11, double k12, double k22, double b1, doub
   *x1 = y1;
   *x2 = y2;
   return true;
+}
+
+/// The same for a K known only now (the soft step's springs add to its diagonal).
+inline bool solveTwoPointLcp(double k11, double k12, double k22, double b1, double b2, double* x1,
+                             double* x2) {
+  const double det = k11 * k22 - k12 * k12;  // > 0: only well-conditioned pairs come here
+  return solveTwoPointLcp(k12, k22 / det, -k12 / det, k11 / det, 1.0 / k11, 1.0 / k22, b1, b2, x1,
+                          x2);
 }
 
 inline bool wellConditioned(double k11, double k12, double k22) {

@@ -17,6 +17,7 @@ constexpr double kMaxLinearCorrection = 0.2;
 void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
                             const WorldDef& def, double dt) {
   constraints_.clear();
+  extras_.clear();
   substeps_ = 0;
   bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
@@ -26,13 +27,15 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     // Asleep, or resting on something that cannot move.
     if (!bodies.isActive(contact.bodyA) && !bodies.isActive(contact.bodyB)) continue;
     ContactConstraint c;
-    c.contact = &contact;
+    ContactConstraintExtra extra;
+    extra.contact = &contact;
     c.a = bodies.entryOf(contact.bodyA);
     c.b = bodies.entryOf(contact.bodyB);
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
+    c.againstStatic = !(a.invMass > 0.0 && b.invMass > 0.0);
     c.normal = m.normal;
-    c.localNormal = a.q.applyInverse(m.normal);
+    extra.localNormal = a.q.applyInverse(m.normal);
     c.friction = contact.friction;
     c.restitution = contact.restitution;
     c.pointCount = m.pointCount;
@@ -40,17 +43,24 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     for (int i = 0; i < m.pointCount; ++i) {
       const ManifoldPoint& mp = m.points[i];
       ContactConstraintPoint& p = c.points[i];
-      p.rA = mp.point - a.center;
-      p.rB = mp.point - b.center;
+      const Vec2 rA = mp.point - a.center;
+      const Vec2 rB = mp.point - b.center;
+      p.normalArmA = cross(rA, m.normal);
+      p.normalArmB = cross(rB, m.normal);
+      p.tangentArmA = cross(rA, tangent);
+      p.tangentArmB = cross(rB, tangent);
+      p.anchorA = a.q.applyInverse(rA);
+      p.anchorB = b.q.applyInverse(rB);
       const Vec2 halfGap = 0.5 * mp.separation * m.normal;
-      p.localA = a.q.applyInverse(mp.point - halfGap - a.center);
-      p.localB = b.q.applyInverse(mp.point + halfGap - b.center);
+      extra.localA[i] = a.q.applyInverse(mp.point - halfGap - a.center);
+      extra.localB[i] = b.q.applyInverse(mp.point + halfGap - b.center);
       p.normalImpulse = contact.normalImpulse[i];
       p.tangentImpulse = contact.tangentImpulse[i];
-      p.normalMass = effectiveMass(a, b, p.rA, p.rB, m.normal);
-      p.tangentMass = effectiveMass(a, b, p.rA, p.rB, tangent);
+      p.normalMass = rowMass(a, b, p.normalArmA, p.normalArmB);
+      p.tangentMass = rowMass(a, b, p.tangentArmA, p.tangentArmB);
       p.separation = mp.separation;
-      p.approachVelocity = relativeVelocity(a, b, p.rA, p.rB).dot(m.normal);
+      extra.approachVelocity[i] =
+          rowSpeed(a, b, m.normal.x(), m.normal.y(), p.normalArmA, p.normalArmB);
       if (mp.separation > 0.0) {
         // Speculative: not touching yet, so the bodies may close the gap within this step.
         p.targetVelocity = -mp.separation / dt;
@@ -64,41 +74,53 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       }
     }
     if (c.pointCount == 2) {
-      const double rn1A = cross(c.points[0].rA, c.normal), rn1B = cross(c.points[0].rB, c.normal);
-      const double rn2A = cross(c.points[1].rA, c.normal), rn2B = cross(c.points[1].rB, c.normal);
+      const ContactConstraintPoint& p1 = c.points[0];
+      const ContactConstraintPoint& p2 = c.points[1];
       const double m = a.invMass + b.invMass;
-      c.k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
-      c.k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
-      c.k12 = m + a.invInertia * rn1A * rn2A + b.invInertia * rn1B * rn2B;
+      c.k11 = m + a.invInertia * p1.normalArmA * p1.normalArmA +
+              b.invInertia * p1.normalArmB * p1.normalArmB;
+      c.k22 = m + a.invInertia * p2.normalArmA * p2.normalArmA +
+              b.invInertia * p2.normalArmB * p2.normalArmB;
+      c.k12 = m + a.invInertia * p1.normalArmA * p2.normalArmA +
+              b.invInertia * p1.normalArmB * p2.normalArmB;
       c.blockSolve = wellConditioned(c.k11, c.k12, c.k22);
+      if (c.blockSolve) {
+        const double det = c.k11 * c.k22 - c.k12 * c.k12;
+        c.inverse11 = c.k22 / det;
+        c.inverse12 = -c.k12 / det;
+        c.inverse22 = c.k11 / det;
+      }
     }
     constraints_.push_back(c);
+    extras_.push_back(extra);
   }
 }
 
 void ContactSolver::warmStart() {
   SolverBody* bodies = bodies_->data();
-  for (ContactConstraint& c : constraints_) {
-    const Vec2 tangent = perp(c.normal);
+  for (const ContactConstraint& c : constraints_) {
+    SolverBody& a = bodies[c.a];
+    SolverBody& b = bodies[c.b];
+    const double tx = -c.normal.y(), ty = c.normal.x();  // perp(normal)
     for (int i = 0; i < c.pointCount; ++i) {
       const ContactConstraintPoint& p = c.points[i];
-      applyImpulse(bodies[c.a], bodies[c.b], p.rA, p.rB,
-                   p.normalImpulse * c.normal + p.tangentImpulse * tangent);
+      applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB,
+                      p.normalImpulse);
+      applyRowImpulse(a, b, tx, ty, p.tangentArmA, p.tangentArmB, p.tangentImpulse);
     }
   }
 }
 
 void ContactSolver::solveFriction(ContactConstraint& c, SolverBody& a, SolverBody& b) {
-  const Vec2 tangent = perp(c.normal);
+  const double tx = -c.normal.y(), ty = c.normal.x();  // perp(normal)
   for (int i = 0; i < c.pointCount; ++i) {
     ContactConstraintPoint& p = c.points[i];
-    const double vt = relativeVelocity(a, b, p.rA, p.rB).dot(tangent);
+    const double vt = rowSpeed(a, b, tx, ty, p.tangentArmA, p.tangentArmB);
     const double maxFriction = c.friction * p.normalImpulse;
     const double total =
         std::clamp(p.tangentImpulse - p.tangentMass * vt, -maxFriction, maxFriction);
-    const double delta = total - p.tangentImpulse;
+    applyRowImpulse(a, b, tx, ty, p.tangentArmA, p.tangentArmB, total - p.tangentImpulse);
     p.tangentImpulse = total;
-    applyImpulse(a, b, p.rA, p.rB, delta * tangent);
   }
 }
 
@@ -110,70 +132,77 @@ void ContactSolver::solveVelocities() {
     // Friction first: non-penetration matters more, so the normal impulse gets the last word.
     solveFriction(c, a, b);
     if (c.blockSolve) {
-      solveNormalBlock(c, a, b);
+      solveNormalBlock(c, a, b, c.points[0].targetVelocity, c.points[1].targetVelocity);
       continue;
     }
     for (int i = 0; i < c.pointCount; ++i) {
       ContactConstraintPoint& p = c.points[i];
-      const double vn = relativeVelocity(a, b, p.rA, p.rB).dot(c.normal);
+      const double vn = rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB);
       // Clamp the accumulated impulse, not the increment: an iteration may take back what an
       // earlier one pushed too hard, as long as the total still only pushes.
       const double total = std::max(p.normalImpulse - p.normalMass * (vn - p.targetVelocity), 0.0);
-      const double delta = total - p.normalImpulse;
+      applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB,
+                      total - p.normalImpulse);
       p.normalImpulse = total;
-      applyImpulse(a, b, p.rA, p.rB, delta * c.normal);
     }
   }
 }
 
 // Both normal impulses of a two-point manifold at once. Solving the pair exactly removes the
 // left-right bias of one-by-one Gauss-Seidel that makes stacks lean.
-void ContactSolver::solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b) {
+void ContactSolver::solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
+                                     double target1, double target2) {
   ContactConstraintPoint& p1 = c.points[0];
   ContactConstraintPoint& p2 = c.points[1];
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
   // With x the accumulated impulses, vn - target = K (x - x_old) + (vn_old - target).
-  const double b1 = relativeVelocity(a, b, p1.rA, p1.rB).dot(c.normal) - p1.targetVelocity -
-                    (c.k11 * x1Old + c.k12 * x2Old);
-  const double b2 = relativeVelocity(a, b, p2.rA, p2.rB).dot(c.normal) - p2.targetVelocity -
-                    (c.k12 * x1Old + c.k22 * x2Old);
+  const double b1 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB) -
+                    target1 - (c.k11 * x1Old + c.k12 * x2Old);
+  const double b2 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB) -
+                    target2 - (c.k12 * x1Old + c.k22 * x2Old);
   double x1 = 0.0, x2 = 0.0;
-  if (!solveTwoPointLcp(c.k11, c.k12, c.k22, b1, b2, &x1, &x2)) return;
-  applyImpulse(a, b, p1.rA, p1.rB, (x1 - x1Old) * c.normal);
-  applyImpulse(a, b, p2.rA, p2.rB, (x2 - x2Old) * c.normal);
+  if (!solveTwoPointLcp(c.k12, c.inverse11, c.inverse12, c.inverse22, p1.normalMass, p2.normalMass,
+                        b1, b2, &x1, &x2)) {
+    return;
+  }
+  applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB, x1 - x1Old);
+  applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB, x2 - x2Old);
   p1.normalImpulse = x1;
   p2.normalImpulse = x2;
 }
 
 void ContactSolver::applyRestitution(double threshold) {
   SolverBody* bodies = bodies_->data();
-  for (ContactConstraint& c : constraints_) {
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    ContactConstraint& c = constraints_[k];
     if (c.restitution == 0.0) continue;
     for (int i = 0; i < c.pointCount; ++i) {
       ContactConstraintPoint& p = c.points[i];
+      const double approach = extras_[k].approachVelocity[i];
       // Only points that pushed: a speculative point the bodies never reached does not bounce.
-      if (p.approachVelocity > -threshold || std::max(p.normalImpulse, p.maxNormalImpulse) == 0.0)
-        continue;
+      if (approach > -threshold || std::max(p.normalImpulse, p.maxNormalImpulse) == 0.0) continue;
       SolverBody& a = bodies[c.a];
       SolverBody& b = bodies[c.b];
-      const double vn = relativeVelocity(a, b, p.rA, p.rB).dot(c.normal);
-      const double target = -c.restitution * p.approachVelocity;
+      const double vn = rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB);
+      const double target = -c.restitution * approach;
       const double total = std::max(p.normalImpulse - p.normalMass * (vn - target), 0.0);
       const double delta = total - p.normalImpulse;
       p.normalImpulse = total;
       p.totalNormalImpulse += delta;
-      applyImpulse(a, b, p.rA, p.rB, delta * c.normal);
+      applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB, delta);
     }
   }
 }
 
 void ContactSolver::storeImpulses() {
-  for (ContactConstraint& c : constraints_) {
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    const ContactConstraint& c = constraints_[k];
+    Contact& contact = *extras_[k].contact;
     for (int i = 0; i < c.pointCount; ++i) {
-      // Always the whole step's impulse; the soft step divides it again for its warm start.
+      // Always the whole step's impulse; the sub-steps divide it again for their warm start.
       const ContactConstraintPoint& p = c.points[i];
-      c.contact->normalImpulse[i] = substeps_ > 0 ? p.totalNormalImpulse : p.normalImpulse;
-      c.contact->tangentImpulse[i] = substeps_ > 0 ? p.totalTangentImpulse : p.tangentImpulse;
+      contact.normalImpulse[i] = substeps_ > 0 ? p.totalNormalImpulse : p.normalImpulse;
+      contact.tangentImpulse[i] = substeps_ > 0 ? p.totalTangentImpulse : p.tangentImpulse;
     }
   }
 }
@@ -181,16 +210,18 @@ void ContactSolver::storeImpulses() {
 bool ContactSolver::solvePositions(const WorldDef& def) {
   SolverBody* bodies = bodies_->data();
   double deepest = 0.0;
-  for (ContactConstraint& c : constraints_) {
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    const ContactConstraint& c = constraints_[k];
+    const ContactConstraintExtra& extra = extras_[k];
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
     Vec2 normal = Vec2::Zero(), rA[2], rB[2];
     double correction[2];
     // Measures point i at the current (partly corrected) poses.
     auto measure = [&](int i) {
-      normal = a.q.apply(c.localNormal);
-      const Vec2 pointA = a.center + a.q.apply(c.points[i].localA);
-      const Vec2 pointB = b.center + b.q.apply(c.points[i].localB);
+      normal = a.q.apply(extra.localNormal);
+      const Vec2 pointA = a.center + a.q.apply(extra.localA[i]);
+      const Vec2 pointB = b.center + b.q.apply(extra.localB[i]);
       const double separation = (pointB - pointA).dot(normal);
       const Vec2 mid = 0.5 * (pointA + pointB);
       rA[i] = mid - a.center;
@@ -230,7 +261,7 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
     // One point, or a pair too degenerate for the block: one at a time.
     for (int i = 0; i < c.pointCount; ++i) {
       measure(i);
-      push(i, -correction[i] * effectiveMass(a, b, rA[i], rB[i], normal));
+      push(i, -correction[i] * rowMass(a, b, cross(rA[i], normal), cross(rB[i], normal)));
     }
   }
   return deepest >= -3.0 * def.linearSlop;

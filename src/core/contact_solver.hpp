@@ -1,6 +1,12 @@
 // The contact part of the sequential-impulse solver: effective masses and biases computed once
 // per step (pre-step), then Gauss-Seidel iterations over the points with accumulated impulses
 // clamped (normal >= 0, friction inside the cone |t| <= mu * n).
+//
+// Every iteration reads and writes all constraints, so what an iteration needs is kept apart
+// from what only the pre-step, restitution and the position pass read (ContactConstraintExtra),
+// and the lever arms enter as the scalars cross(r, n) and cross(r, t) the rows use:
+//   normal speed   vn = n . (vB - vA) + wB cross(rB, n) - wA cross(rA, n)
+//   impulse P n:   vA -= mA P n,  wA -= iA P cross(rA, n),  and + for B.
 #pragma once
 
 #include "contact.hpp"
@@ -14,33 +20,40 @@
 namespace impulse2d {
 
 struct ContactConstraintPoint {
-  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();          // from each centre of mass to the point
-  Vec2 localA = Vec2::Zero(), localB = Vec2::Zero();  // surface points, body frames, for NGS
+  double normalArmA = 0.0, normalArmB = 0.0;    // cross(rA, n), cross(rB, n)
+  double tangentArmA = 0.0, tangentArmB = 0.0;  // cross(rA, t), cross(rB, t), t = perp(n)
   double normalImpulse = 0.0, tangentImpulse = 0.0;
   double normalMass = 0.0, tangentMass = 0.0;
-  double targetVelocity = 0.0;    // the normal velocity the point must at least reach
-  double approachVelocity = 0.0;  // normal velocity before solving, for restitution
-  double separation = 0.0;
-  // Soft step: the contact point fixed in each body (body frame, from the centre of mass), so
+  double targetVelocity = 0.0;  // one-pass solvers: the normal velocity the point must reach
+  double separation = 0.0;      // at the pre-step
+  // Sub-steps: the contact point fixed in each body (body frame, from the centre of mass), so
   // the separation can be followed through the sub-steps without a new narrow phase.
   Vec2 anchorA = Vec2::Zero(), anchorB = Vec2::Zero();
-  double maxNormalImpulse = 0.0;  // largest of any sub-step: did the point push at all?
   double totalNormalImpulse = 0.0, totalTangentImpulse = 0.0;  // summed over the sub-steps
+  double maxNormalImpulse = 0.0;  // largest of any sub-step (restitution: did it push at all?)
 };
 
 struct ContactConstraint {
-  Contact* contact = nullptr;
   int a = -1, b = -1;  // entries in the step's SolverBodies
-  Vec2 normal = Vec2::Zero();
-  Vec2 localNormal = Vec2::Zero();  // in A's frame, for NGS
-  double friction = 0.0, restitution = 0.0;
   int pointCount = 0;
-  ContactConstraintPoint points[2];
   // Two-point manifolds whose points are not (nearly) redundant solve both normal impulses at
-  // once; k is their 2x2 effective-mass matrix, used when `blockSolve` is set.
+  // once: k is their 2x2 effective-mass matrix, inverse its inverse (both used when set).
   bool blockSolve = false;
+  bool againstStatic = false;  // one body cannot move (the soft step's stiffer spring)
+  Vec2 normal = Vec2::Zero();
+  double friction = 0.0, restitution = 0.0;
   double k11 = 0.0, k12 = 0.0, k22 = 0.0;
-  Feedback soft;  // soft step: the contact spring (stiffer against static bodies)
+  double inverse11 = 0.0, inverse12 = 0.0, inverse22 = 0.0;
+  ContactConstraintPoint points[2];
+};
+
+/// What only the pre-step, restitution, storing and the position pass read, by constraint.
+struct ContactConstraintExtra {
+  Contact* contact = nullptr;
+  Vec2 localNormal = Vec2::Zero();                // in A's frame, for NGS
+  Vec2 localA[2] = {Vec2::Zero(), Vec2::Zero()};  // surface points, body frames, for NGS
+  Vec2 localB[2] = {Vec2::Zero(), Vec2::Zero()};  //
+  double approachVelocity[2] = {0.0, 0.0};        // normal velocity before solving
 };
 
 class ContactSolver {
@@ -64,22 +77,26 @@ class ContactSolver {
   /// After prepare(): sets the soft step's springs for sub-steps of h and turns the arbiters'
   /// whole-step impulses into one sub-step's warm start.
   void prepareSubsteps(const WorldDef& def, int substeps, double h);
-  /// One iteration at the current poses; useBias: the soft step's push out of overlaps.
-  void solveSubstep(double h, bool useBias, double maxPushVelocity);
-  /// After each sub-step's relax pass: adds what the sub-step applied to the step's totals.
-  void addSubstepImpulses();
+  /// One iteration at the current poses. The soft step's first pass pushes out of overlaps
+  /// (useBias); the relax pass, the last of a sub-step, adds the sub-step's impulses to the
+  /// step's totals.
+  void solveSubstep(double h, bool useBias, bool relax, double maxPushVelocity);
 
  private:
   /// Friction rows of one contact, clamped to the cone of its current normal impulses.
   static void solveFriction(ContactConstraint& c, SolverBody& a, SolverBody& b);
-  static void solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b);
+  /// Both normal rows of a two-point manifold, rigid, aiming at the given normal velocities.
+  static void solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b, double target1,
+                               double target2);
   static void solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
                                    const double bias[2], const Feedback fb[2]);
 
-  int substeps_ = 0;                // 0: a one-pass solver (Baumgarte or NGS)
-  SolverBodies* bodies_ = nullptr;  // this step's; entries may be added until the solve starts
+  int substeps_ = 0;                   // 0: a one-pass solver (Baumgarte or NGS)
+  SolverBodies* bodies_ = nullptr;     // this step's; entries may be added until the solve starts
+  Feedback dynamicSoft_, staticSoft_;  // the soft step's contact springs
 
   std::vector<ContactConstraint> constraints_;
+  std::vector<ContactConstraintExtra> extras_;  // by constraint
 };
 
 }  // namespace impulse2d

@@ -21,11 +21,14 @@ namespace {
 // 5050-box pyramid apart (0.19 sways, 0.25 collapses; 0.15 holds it within 3 cm).
 constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 
-double currentSeparation(const ContactConstraint& c, const ContactConstraintPoint& p,
-                         const SolverBody& a, const SolverBody& b) {
-  const Vec2 pointA = a.center + a.q.apply(p.anchorA);
-  const Vec2 pointB = b.center + b.q.apply(p.anchorB);
-  return c.normal.dot(pointB - pointA) + p.separation;
+// In scalars, as contact_math.hpp explains.
+double currentSeparation(const ContactConstraintPoint& p, const Vec2& normal, const SolverBody& a,
+                         const SolverBody& b) {
+  const double ax = a.center.x() + a.q.c * p.anchorA.x() - a.q.s * p.anchorA.y();
+  const double ay = a.center.y() + a.q.s * p.anchorA.x() + a.q.c * p.anchorA.y();
+  const double bx = b.center.x() + b.q.c * p.anchorB.x() - b.q.s * p.anchorB.y();
+  const double by = b.center.y() + b.q.s * p.anchorB.x() + b.q.c * p.anchorB.y();
+  return normal.x() * (bx - ax) + normal.y() * (by - ay) + p.separation;
 }
 
 }  // namespace
@@ -33,19 +36,11 @@ double currentSeparation(const ContactConstraint& c, const ContactConstraintPoin
 void ContactSolver::prepareSubsteps(const WorldDef& def, int substeps, double h) {
   substeps_ = substeps;
   const double hertz = std::min(def.contactHertz, kMaxContactHertzPerSubstepRate / h);
-  const Feedback dynamicSoft = springFeedback(hertz, def.contactDampingRatio, h);
-  const Feedback staticSoft = springFeedback(2.0 * hertz, def.contactDampingRatio, h);
-  SolverBody* bodies = bodies_->data();
+  dynamicSoft_ = springFeedback(hertz, def.contactDampingRatio, h);
+  staticSoft_ = springFeedback(2.0 * hertz, def.contactDampingRatio, h);
   for (ContactConstraint& c : constraints_) {
-    const SolverBody& a = bodies[c.a];
-    const SolverBody& b = bodies[c.b];
-    const bool bothMove = a.invMass > 0.0 && b.invMass > 0.0;
-    c.soft = bothMove ? dynamicSoft : staticSoft;
     for (int i = 0; i < c.pointCount; ++i) {
       ContactConstraintPoint& p = c.points[i];
-      // prepare() measured the separation with both points at the manifold point.
-      p.anchorA = a.q.applyInverse(p.rA);
-      p.anchorB = b.q.applyInverse(p.rB);
       p.normalImpulse /= substeps;
       p.tangentImpulse /= substeps;
       p.maxNormalImpulse = 0.0;
@@ -54,47 +49,58 @@ void ContactSolver::prepareSubsteps(const WorldDef& def, int substeps, double h)
   }
 }
 
-void ContactSolver::solveSubstep(double h, bool useBias, double maxPushVelocity) {
+void ContactSolver::solveSubstep(double h, bool useBias, bool relax, double maxPushVelocity) {
   SolverBody* bodies = bodies_->data();
-  for (ContactConstraint& c : constraints_) {
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    ContactConstraint& c = constraints_[k];
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
     solveFriction(c, a, b);
 
     double bias[2] = {0.0, 0.0};
     Feedback fb[2];
+    bool soft = false;
     for (int i = 0; i < c.pointCount; ++i) {
-      const double s = currentSeparation(c, c.points[i], a, b);
+      const double s = currentSeparation(c.points[i], c.normal, a, b);
       if (s > 0.0) {
         bias[i] = s / h;  // not touching: close the gap within the sub-step, no further
       } else if (useBias) {
-        bias[i] = std::max(c.soft.rate * s, -maxPushVelocity);
-        fb[i] = c.soft;
+        fb[i] = c.againstStatic ? staticSoft_ : dynamicSoft_;
+        bias[i] = std::max(fb[i].rate * s, -maxPushVelocity);
+        soft = true;
       }
     }
     if (c.restitution > 0.0) {
       // Gravity keeps speeding the bodies up until the sub-step they meet in: the bounce must
       // return that speed, not the slower one the step began with.
       for (int i = 0; i < c.pointCount; ++i) {
-        ContactConstraintPoint& p = c.points[i];
-        p.approachVelocity =
-            std::min(p.approachVelocity, relativeVelocity(a, b, p.rA, p.rB).dot(c.normal));
+        const ContactConstraintPoint& p = c.points[i];
+        double& approach = extras_[k].approachVelocity[i];
+        approach = std::min(approach,
+                            rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB));
       }
     }
-    if (c.blockSolve) {
+    if (c.blockSolve && soft) {
       solveSoftNormalBlock(c, a, b, bias, fb);
+    } else if (c.blockSolve) {
+      solveNormalBlock(c, a, b, -bias[0], -bias[1]);
     } else {
       for (int i = 0; i < c.pointCount; ++i) {
         ContactConstraintPoint& p = c.points[i];
-        const double vn = relativeVelocity(a, b, p.rA, p.rB).dot(c.normal);
+        const double vn = rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB);
         const double total = solveOneSided(p.normalImpulse, p.normalMass, vn + bias[i], fb[i]);
-        applyImpulse(a, b, p.rA, p.rB, (total - p.normalImpulse) * c.normal);
+        applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB,
+                        total - p.normalImpulse);
         p.normalImpulse = total;
       }
     }
     for (int i = 0; i < c.pointCount; ++i) {
       ContactConstraintPoint& p = c.points[i];
-      p.maxNormalImpulse = std::max(p.maxNormalImpulse, p.normalImpulse);
+      if (c.restitution > 0.0) p.maxNormalImpulse = std::max(p.maxNormalImpulse, p.normalImpulse);
+      if (relax) {
+        p.totalNormalImpulse += p.normalImpulse;
+        p.totalTangentImpulse += p.tangentImpulse;
+      }
     }
   }
 }
@@ -110,26 +116,16 @@ void ContactSolver::solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, So
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
   const double gamma1 = c.k11 * fb[0].impulseScale / fb[0].massScale;
   const double gamma2 = c.k22 * fb[1].impulseScale / fb[1].massScale;
-  const double b1 = relativeVelocity(a, b, p1.rA, p1.rB).dot(c.normal) + bias[0] -
-                    (c.k11 * x1Old + c.k12 * x2Old);
-  const double b2 = relativeVelocity(a, b, p2.rA, p2.rB).dot(c.normal) + bias[1] -
-                    (c.k12 * x1Old + c.k22 * x2Old);
+  const double b1 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB) +
+                    bias[0] - (c.k11 * x1Old + c.k12 * x2Old);
+  const double b2 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB) +
+                    bias[1] - (c.k12 * x1Old + c.k22 * x2Old);
   double x1 = 0.0, x2 = 0.0;
   if (!solveTwoPointLcp(c.k11 + gamma1, c.k12, c.k22 + gamma2, b1, b2, &x1, &x2)) return;
-  applyImpulse(a, b, p1.rA, p1.rB, (x1 - x1Old) * c.normal);
-  applyImpulse(a, b, p2.rA, p2.rB, (x2 - x2Old) * c.normal);
+  applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB, x1 - x1Old);
+  applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB, x2 - x2Old);
   p1.normalImpulse = x1;
   p2.normalImpulse = x2;
-}
-
-void ContactSolver::addSubstepImpulses() {
-  for (ContactConstraint& c : constraints_) {
-    for (int i = 0; i < c.pointCount; ++i) {
-      ContactConstraintPoint& p = c.points[i];
-      p.totalNormalImpulse += p.normalImpulse;
-      p.totalTangentImpulse += p.tangentImpulse;
-    }
-  }
 }
 
 }  // namespace impulse2d

@@ -57,7 +57,7 @@ void WorldImpl::solveSubsteps(double dt) {
     warmStartJoints();
     contactSolver.warmStart();
     solveJointVelocities(h);
-    contactSolver.solveSubstep(h, soft, def.maxPushVelocity);
+    contactSolver.solveSubstep(h, soft, false, def.maxPushVelocity);
 
     moveBodies(h);
 
@@ -66,8 +66,7 @@ void WorldImpl::solveSubsteps(double dt) {
     // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
     prepareJoints(rigid, h);
     solveJointVelocities(h);
-    contactSolver.solveSubstep(h, false, def.maxPushVelocity);
-    contactSolver.addSubstepImpulses();
+    contactSolver.solveSubstep(h, false, true, def.maxPushVelocity);
   }
   contactSolver.applyRestitution(def.restitutionThreshold);
   contactSolver.storeImpulses();
