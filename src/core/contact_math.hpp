@@ -42,6 +42,20 @@ inline void applyRowImpulse(SolverBody& a, SolverBody& b, double dx, double dy, 
   b.angularVelocity += b.invInertia * armB * amount;
 }
 
+/// Two impulses along the same (dx, dy) at two points of one manifold, applied at once.
+inline void applyTwoRowImpulses(SolverBody& a, SolverBody& b, double dx, double dy, double armA1,
+                                double armB1, double amount1, double armA2, double armB2,
+                                double amount2) {
+  const double sum = amount1 + amount2;
+  const double pa = a.invMass * sum, pb = b.invMass * sum;
+  a.linearVelocity.x() -= pa * dx;
+  a.linearVelocity.y() -= pa * dy;
+  a.angularVelocity -= a.invInertia * (armA1 * amount1 + armA2 * amount2);
+  b.linearVelocity.x() += pb * dx;
+  b.linearVelocity.y() += pb * dy;
+  b.angularVelocity += b.invInertia * (armB1 * amount1 + armB2 * amount2);
+}
+
 // The 2x2 linear complementarity problem  w = K x + b,  x >= 0,  w >= 0,  x_i w_i = 0  has few
 // enough cases to try them all: both rows active, only the first, only the second, neither.
 // `inverse` is K^-1 (symmetric) and mass1, mass2 are 1 / K11, 1 / K22. Returns false when none

@@ -101,13 +101,23 @@ void ContactSolver::warmStart() {
   for (const ContactConstraint& c : constraints_) {
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
-    const double tx = -c.normal.y(), ty = c.normal.x();  // perp(normal)
+    // All impulses of the manifold at once: P = sum of (normal n + tangent t) over the points.
+    const double nx = c.normal.x(), ny = c.normal.y();
+    double normal = 0.0, tangent = 0.0, angularA = 0.0, angularB = 0.0;
     for (int i = 0; i < c.pointCount; ++i) {
       const ContactConstraintPoint& p = c.points[i];
-      applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB,
-                      p.normalImpulse);
-      applyRowImpulse(a, b, tx, ty, p.tangentArmA, p.tangentArmB, p.tangentImpulse);
+      normal += p.normalImpulse;
+      tangent += p.tangentImpulse;
+      angularA += p.normalImpulse * p.normalArmA + p.tangentImpulse * p.tangentArmA;
+      angularB += p.normalImpulse * p.normalArmB + p.tangentImpulse * p.tangentArmB;
     }
+    const double px = normal * nx - tangent * ny, py = normal * ny + tangent * nx;
+    a.linearVelocity.x() -= a.invMass * px;
+    a.linearVelocity.y() -= a.invMass * py;
+    a.angularVelocity -= a.invInertia * angularA;
+    b.linearVelocity.x() += b.invMass * px;
+    b.linearVelocity.y() += b.invMass * py;
+    b.angularVelocity += b.invInertia * angularB;
   }
 }
 
@@ -154,19 +164,23 @@ void ContactSolver::solveNormalBlock(ContactConstraint& c, SolverBody& a, Solver
                                      double target1, double target2) {
   ContactConstraintPoint& p1 = c.points[0];
   ContactConstraintPoint& p2 = c.points[1];
+  const double nx = c.normal.x(), ny = c.normal.y();
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
+  // Both points share the bodies' linear velocities; only the turning differs.
+  const double linear = nx * (b.linearVelocity.x() - a.linearVelocity.x()) +
+                        ny * (b.linearVelocity.y() - a.linearVelocity.y());
+  const double vn1 = linear + b.angularVelocity * p1.normalArmB - a.angularVelocity * p1.normalArmA;
+  const double vn2 = linear + b.angularVelocity * p2.normalArmB - a.angularVelocity * p2.normalArmA;
   // With x the accumulated impulses, vn - target = K (x - x_old) + (vn_old - target).
-  const double b1 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB) -
-                    target1 - (c.k11 * x1Old + c.k12 * x2Old);
-  const double b2 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB) -
-                    target2 - (c.k12 * x1Old + c.k22 * x2Old);
+  const double b1 = vn1 - target1 - (c.k11 * x1Old + c.k12 * x2Old);
+  const double b2 = vn2 - target2 - (c.k12 * x1Old + c.k22 * x2Old);
   double x1 = 0.0, x2 = 0.0;
   if (!solveTwoPointLcp(c.k12, c.inverse11, c.inverse12, c.inverse22, p1.normalMass, p2.normalMass,
                         b1, b2, &x1, &x2)) {
     return;
   }
-  applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB, x1 - x1Old);
-  applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB, x2 - x2Old);
+  applyTwoRowImpulses(a, b, nx, ny, p1.normalArmA, p1.normalArmB, x1 - x1Old, p2.normalArmA,
+                      p2.normalArmB, x2 - x2Old);
   p1.normalImpulse = x1;
   p2.normalImpulse = x2;
 }
@@ -233,11 +247,9 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
     auto push = [&](int i, double amount) {
       const Vec2 impulse = amount * normal;
       a.center -= a.invMass * impulse;
-      a.angle -= a.invInertia * cross(rA[i], impulse);
+      turnBy(a, -a.invInertia * cross(rA[i], impulse));
       b.center += b.invMass * impulse;
-      b.angle += b.invInertia * cross(rB[i], impulse);
-      if (a.invMass > 0.0 || a.invInertia > 0.0) syncRotation(a);
-      if (b.invMass > 0.0 || b.invInertia > 0.0) syncRotation(b);
+      turnBy(b, b.invInertia * cross(rB[i], impulse));
     };
     if (c.pointCount == 2) {
       // Both points together, as in the velocity pass: one after the other would tilt the body

@@ -88,8 +88,13 @@ class ContactSolver {
   /// Both normal rows of a two-point manifold, rigid, aiming at the given normal velocities.
   static void solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b, double target1,
                                double target2);
-  static void solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
-                                   const double bias[2], const Feedback fb[2]);
+  /// The soft step's push: both normal rows, each a spring where its point touches.
+  void solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
+                            const double bias[2]) const;
+  /// The soft step's contact spring (stiffer against a body that cannot move).
+  const Feedback& softness(const ContactConstraint& c) const {
+    return c.againstStatic ? staticSoft_ : dynamicSoft_;
+  }
 
   int substeps_ = 0;                   // 0: a one-pass solver (Baumgarte or NGS)
   SolverBodies* bodies_ = nullptr;     // this step's; entries may be added until the solve starts

@@ -51,22 +51,23 @@ void ContactSolver::prepareSubsteps(const WorldDef& def, int substeps, double h)
 
 void ContactSolver::solveSubstep(double h, bool useBias, bool relax, double maxPushVelocity) {
   SolverBody* bodies = bodies_->data();
+  const double inverseH = 1.0 / h;
   for (size_t k = 0; k < constraints_.size(); ++k) {
     ContactConstraint& c = constraints_[k];
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
     solveFriction(c, a, b);
 
+    // Not touching: close the gap within the sub-step, no further (a bias of s / h). Touching:
+    // no bias, or the soft step's push.
     double bias[2] = {0.0, 0.0};
-    Feedback fb[2];
     bool soft = false;
     for (int i = 0; i < c.pointCount; ++i) {
       const double s = currentSeparation(c.points[i], c.normal, a, b);
       if (s > 0.0) {
-        bias[i] = s / h;  // not touching: close the gap within the sub-step, no further
+        bias[i] = s * inverseH;
       } else if (useBias) {
-        fb[i] = c.againstStatic ? staticSoft_ : dynamicSoft_;
-        bias[i] = std::max(fb[i].rate * s, -maxPushVelocity);
+        bias[i] = std::max(softness(c).rate * s, -maxPushVelocity);
         soft = true;
       }
     }
@@ -80,24 +81,31 @@ void ContactSolver::solveSubstep(double h, bool useBias, bool relax, double maxP
                             rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB));
       }
     }
-    if (c.blockSolve && soft) {
-      solveSoftNormalBlock(c, a, b, bias, fb);
-    } else if (c.blockSolve) {
+    if (c.blockSolve && !soft) {
       solveNormalBlock(c, a, b, -bias[0], -bias[1]);
+    } else if (c.blockSolve) {
+      solveSoftNormalBlock(c, a, b, bias);
     } else {
       for (int i = 0; i < c.pointCount; ++i) {
         ContactConstraintPoint& p = c.points[i];
+        const bool pushes = useBias && bias[i] <= 0.0;
         const double vn = rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB);
-        const double total = solveOneSided(p.normalImpulse, p.normalMass, vn + bias[i], fb[i]);
+        const double total = solveOneSided(p.normalImpulse, p.normalMass, vn + bias[i],
+                                           pushes ? softness(c) : Feedback());
         applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB,
                         total - p.normalImpulse);
         p.normalImpulse = total;
       }
     }
-    for (int i = 0; i < c.pointCount; ++i) {
-      ContactConstraintPoint& p = c.points[i];
-      if (c.restitution > 0.0) p.maxNormalImpulse = std::max(p.maxNormalImpulse, p.normalImpulse);
-      if (relax) {
+    if (c.restitution > 0.0) {
+      for (int i = 0; i < c.pointCount; ++i) {
+        ContactConstraintPoint& p = c.points[i];
+        p.maxNormalImpulse = std::max(p.maxNormalImpulse, p.normalImpulse);
+      }
+    }
+    if (relax) {
+      for (int i = 0; i < c.pointCount; ++i) {
+        ContactConstraintPoint& p = c.points[i];
         p.totalNormalImpulse += p.normalImpulse;
         p.totalTangentImpulse += p.tangentImpulse;
       }
@@ -110,12 +118,15 @@ void ContactSolver::solveSubstep(double h, bool useBias, bool relax, double maxP
 // (s = impulseScale, m = massScale), which is the one-row update of feedback.hpp solved
 // exactly; with v = v_now + K (x - x_old) it is the 2x2 LCP  w = (K + diag(gamma)) x + b.
 void ContactSolver::solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
-                                         const double bias[2], const Feedback fb[2]) {
+                                         const double bias[2]) const {
   ContactConstraintPoint& p1 = c.points[0];
   ContactConstraintPoint& p2 = c.points[1];
   const double x1Old = p1.normalImpulse, x2Old = p2.normalImpulse;
-  const double gamma1 = c.k11 * fb[0].impulseScale / fb[0].massScale;
-  const double gamma2 = c.k22 * fb[1].impulseScale / fb[1].massScale;
+  // A point not touching (bias > 0) is rigid: no spring.
+  const Feedback& fb = softness(c);
+  const double spring = fb.impulseScale / fb.massScale;
+  const double gamma1 = bias[0] > 0.0 ? 0.0 : c.k11 * spring;
+  const double gamma2 = bias[1] > 0.0 ? 0.0 : c.k22 * spring;
   const double b1 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p1.normalArmA, p1.normalArmB) +
                     bias[0] - (c.k11 * x1Old + c.k12 * x2Old);
   const double b2 = rowSpeed(a, b, c.normal.x(), c.normal.y(), p2.normalArmA, p2.normalArmB) +

@@ -33,11 +33,9 @@ void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angul
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB) {
   a.center -= a.invMass * p;
-  a.angle -= a.invInertia * angularA;
+  turnBy(a, -a.invInertia * angularA);
   b.center += b.invMass * p;
-  b.angle += b.invInertia * angularB;
-  syncRotation(a);
-  syncRotation(b);
+  turnBy(b, b.invInertia * angularB);
 }
 
 double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb) {

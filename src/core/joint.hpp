@@ -86,7 +86,7 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k);
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
 void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                        double angularB);
-/// The same as a position correction (NGS), then syncs both transforms.
+/// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB);
 /// Target rate of a one-sided limit row whose position error is c (>= 0 means within): a limit

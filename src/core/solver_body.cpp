@@ -71,7 +71,7 @@ void SolverBodies::storePoses(std::vector<Body>& bodies, int count) const {
     Body& body = bodies[slots_[e]];
     body.center = entries_[e].center;
     body.angle = entries_[e].angle;
-    body.xf.q = entries_[e].q;
+    body.xf.q = Rot(body.angle);
     body.xf.p = body.center - body.xf.q.apply(body.localCenter);
   }
 }

@@ -216,8 +216,7 @@ void WorldImpl::integratePositions(double dt) {
       }
     }
     body.center += move;
-    body.angle += turn;
-    syncRotation(body);
+    turnBy(body, turn);
   }
 }
 

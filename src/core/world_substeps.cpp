@@ -29,8 +29,7 @@ void WorldImpl::moveBodies(double h) {
   for (int e = 0; e < solverBodies.movingCount(); ++e) {
     SolverBody& body = solverBodies[e];
     body.center += h * body.linearVelocity;
-    body.angle += h * body.angularVelocity;
-    syncRotation(body);
+    turnBy(body, h * body.angularVelocity);
   }
 }
 
