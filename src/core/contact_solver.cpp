@@ -21,13 +21,14 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
   substeps_ = 0;
   bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
+  const double inverseDt = 1.0 / dt;
   for (Contact& contact : contacts) {
     const Manifold& m = contact.manifold;
     if (m.pointCount == 0) continue;
     // Asleep, or resting on something that cannot move.
     if (!bodies.isActive(contact.bodyA) && !bodies.isActive(contact.bodyB)) continue;
-    ContactConstraint c;
-    ContactConstraintExtra extra;
+    ContactConstraint& c = constraints_.emplace_back();  // built in place: no copies
+    ContactConstraintExtra& extra = extras_.emplace_back();
     extra.contact = &contact;
     c.a = bodies.entryOf(contact.bodyA);
     c.b = bodies.entryOf(contact.bodyB);
@@ -63,7 +64,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
           rowSpeed(a, b, m.normal.x(), m.normal.y(), p.normalArmA, p.normalArmB);
       if (mp.separation > 0.0) {
         // Speculative: not touching yet, so the bodies may close the gap within this step.
-        p.targetVelocity = -mp.separation / dt;
+        p.targetVelocity = -mp.separation * inverseDt;
       } else if (baumgarte) {
         // Capped, so that bodies spawned deep inside each other separate instead of exploding.
         p.targetVelocity =
@@ -91,8 +92,6 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
         c.inverse22 = c.k11 / det;
       }
     }
-    constraints_.push_back(c);
-    extras_.push_back(extra);
   }
 }
 
@@ -256,6 +255,7 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
       // a little every pass, and a tall stack leans over.
       measure(0);
       measure(1);
+      if (correction[0] == 0.0 && correction[1] == 0.0) continue;  // both within the slop
       const double rn1A = cross(rA[0], normal), rn1B = cross(rB[0], normal);
       const double rn2A = cross(rA[1], normal), rn2B = cross(rB[1], normal);
       const double m = a.invMass + b.invMass;

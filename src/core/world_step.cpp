@@ -137,8 +137,8 @@ void WorldImpl::integrateVelocities(double dt) {
     body.linearVelocity += dt * (def.gravity + body.invMass * load.force);
     body.angularVelocity += dt * body.invInertia * load.torque;
     // Implicit damping: stable for any damping coefficient and time step.
-    body.linearVelocity *= 1.0 / (1.0 + dt * load.linearDamping);
-    body.angularVelocity *= 1.0 / (1.0 + dt * load.angularDamping);
+    if (load.linearDamping > 0.0) body.linearVelocity *= 1.0 / (1.0 + dt * load.linearDamping);
+    if (load.angularDamping > 0.0) body.angularVelocity *= 1.0 / (1.0 + dt * load.angularDamping);
   }
 }
 
