@@ -7,7 +7,10 @@ Writes docs/img/bench_<scene>.png (error against ms/step, one curve per engine a
 velocity-iteration sweep as a line, position-iteration and time-step sweeps as markers),
 docs/img/bench_scaling.png (ms/step against body count) and docs/img/bench_headline.png (the
 large pyramid and the stack of 20 side by side). --table writes the markdown table of the
-engines' defaults with the ratios impulse2d / peer, all from the same CSV (the same run).
+engines' defaults with the ratios impulse2d / peer, then the ratios at equal or lower error: for
+each peer at its defaults, the cheapest impulse2d row of the whole sweep (any solver, iteration
+count or time step) whose every error figure is at most the peer's, all from the same CSV (the
+same run).
 """
 import argparse
 import csv
@@ -177,6 +180,71 @@ def table(rows):
     return "\n".join(lines) + "\n"
 
 
+# Error figures a row must not exceed to count as "equal or lower error" (absolute values).
+ERROR_COLUMNS = ("penetration_mean", "penetration_max", "drift_max", "sink_max", "joint_gap_mean",
+                 "joint_gap_max", "energy_drift")
+
+
+def cost(row):
+    """Wall time per simulated second: rows at other time steps take more or fewer steps."""
+    return num(row, "ms_per_step") / num(row, "time_step")
+
+
+def no_worse(mine, peer):
+    """mine's every error figure is at most peer's, and it stood wherever peer stood."""
+    if peer["stood"] == "true" and mine["stood"] != "true":
+        return False
+    for column in ERROR_COLUMNS:
+        if column == "energy_drift" and PRIMARY.get(mine["scene"], ("",))[0] == "penetration_max":
+            continue  # falling scenes lose energy by design: losing less is not more accurate
+        a, b = abs(num(mine, column)), abs(num(peer, column))
+        if math.isnan(b):
+            continue
+        if math.isnan(a) or a > b:
+            return False
+    return True
+
+
+def describe(row):
+    return "%s %s/%s, dt 1/%.0f" % (row["solver"], row["velocity_iterations"],
+                                    row["position_iterations"] or "-",
+                                    1.0 / num(row, "time_step"))
+
+
+def equal_error_table(rows):
+    """Markdown: for each peer at its defaults, the cheapest impulse2d rows with no worse errors:
+    at the peer's time step (ms/step compared), and at any time step (time per simulated second
+    compared, as a coarser step with more iterations may be both cheaper and more accurate)."""
+    lines = ["| scene | peer at its defaults | peer ms/step | impulse2d at the same time step: "
+             "cheapest row with every error at most the peer's (solver velocity/position "
+             "iterations) | its ms/step | ratio | at any time step: cheapest such row | "
+             "time per simulated second, ratio |",
+             "|---|---|---|---|---|---|---|---|"]
+    for scene in ("pyramid100", "stack20", "pyramid20", "mass_ratio", "bridge20", "joint_grid",
+                  "falling_shapes"):
+        peers = [r for r in rows if r["scene"] == scene and r["sweep"] == "default"
+                 and r["engine"] != "impulse2d"]
+        mine = [r for r in rows if r["scene"] == scene and r["engine"] == "impulse2d"]
+        for peer in peers:
+            name = "%s %s" % (peer["engine"], peer["solver"])
+            cells = ["%s" % scene, name, fmt(num(peer, "ms_per_step"))]
+            candidates = [r for r in mine if no_worse(r, peer)]
+            same_step = [r for r in candidates if r["time_step"] == peer["time_step"]]
+            if same_step:
+                best = min(same_step, key=cost)
+                cells += [describe(best), fmt(num(best, "ms_per_step")),
+                          "**%.2f**" % (num(best, "ms_per_step") / num(peer, "ms_per_step"))]
+            else:
+                cells += ["none", "-", "-"]
+            if candidates:
+                best = min(candidates, key=cost)
+                cells += [describe(best), "%.2f" % (cost(best) / cost(peer))]
+            else:
+                cells += ["none", "-"]
+            lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("csv")
@@ -198,6 +266,8 @@ def main():
     if args.table:
         with open(args.table, "w") as f:
             f.write(table(rows))
+            f.write("\n")
+            f.write(equal_error_table(rows))
     print("plot_bench: %d scenes plotted into %s" % (len(scenes), os.path.normpath(args.out)))
 
 
