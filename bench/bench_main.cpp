@@ -21,7 +21,7 @@ namespace {
 const char* kUsage =
     "usage: impulse2d_bench [--quick | --full] [--scenes A,B] [--engines A,B] [--solvers A,B]\n"
     "                       [--repeats N] [--sweep-repeats N] [--steps N] [--csv FILE]\n"
-    "                       [--memory-csv FILE]\n"
+    "                       [--memory-csv FILE] [--also SOLVER:VEL:POS[:HZ],...]\n"
     "  (default)         every scene, each engine and solver at the engine's defaults (60 Hz)\n"
     "  --quick           short runs and a small scaling series (CI smoke test, < 2 min)\n"
     "  --full            sweep velocity iterations, position iterations and the time step\n"
@@ -33,7 +33,11 @@ const char* kUsage =
     "  --steps N         run N steps instead of each scene's duration (for profiling)\n"
     "  --csv FILE        results (default bench.csv)\n"
     "  --memory-csv FILE peak heap per body and per contact on pyramid100 (default\n"
-    "                    <csv without .csv>_memory.csv; skipped when pyramid100 is filtered out)\n";
+    "                    <csv without .csv>_memory.csv; skipped when pyramid100 is filtered out)\n"
+    "  --also S:V:P[:HZ] impulse2d rows at these settings (solver, velocity and position\n"
+    "                    iterations, steps per second, default 60), timed in the same round\n"
+    "                    robin as the engines' defaults (sweep 'chosen'), e.g. "
+    "ngs:8:0,substep:2:3\n";
 
 struct Options {
   bool quick = false, full = false;
@@ -42,6 +46,7 @@ struct Options {
   int sweepRepeats = 1;
   int steps = 0;  // 0: each scene's duration
   std::string csv = "bench.csv", memoryCsv;
+  std::vector<EngineSettings> also;  // impulse2d settings timed beside the defaults
 };
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -52,6 +57,34 @@ std::vector<std::string> splitList(const std::string& text) {
     if (!item.empty()) out.push_back(item);
   }
   return out;
+}
+
+// "solver:vel:pos[:hz]" -> settings, or the reason it is refused.
+std::string parseSettings(const std::string& text, EngineSettings* out) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ':')) parts.push_back(part);
+  if (parts.size() != 3 && parts.size() != 4) return "--also takes SOLVER:VEL:POS[:HZ]";
+  const EngineInfo engine = impulse2dEngine();
+  if (std::find(engine.solvers.begin(), engine.solvers.end(), parts[0]) == engine.solvers.end()) {
+    return "--also: unknown solver '" + parts[0] + "'";
+  }
+  out->solver = parts[0];
+  long numbers[3] = {0, 0, 60};
+  const long limits[3][2] = {{1, 1000}, {0, 1000}, {1, 10000}};
+  for (size_t k = 1; k < parts.size(); ++k) {
+    char* end = nullptr;
+    numbers[k - 1] = std::strtol(parts[k].c_str(), &end, 10);
+    if (parts[k].empty() || *end != '\0' || numbers[k - 1] < limits[k - 1][0] ||
+        numbers[k - 1] > limits[k - 1][1]) {
+      return "--also: '" + text + "': iterations 1..1000 and 0..1000, steps per second 1..10000";
+    }
+  }
+  out->velocityIterations = static_cast<int>(numbers[0]);
+  out->positionIterations = static_cast<int>(numbers[1]);
+  out->timeStep = 1.0 / static_cast<double>(numbers[2]);
+  return "";
 }
 
 // Returns an empty string or the reason the arguments are refused.
@@ -99,6 +132,14 @@ std::string parseOptions(int argc, char** argv, Options* o) {
       if (!value(&o->csv)) return "--csv needs a file name";
     } else if (arg == "--memory-csv") {
       if (!value(&o->memoryCsv)) return "--memory-csv needs a file name";
+    } else if (arg == "--also") {
+      if (!value(&v)) return "--also needs SOLVER:VEL:POS[:HZ],...";
+      for (const std::string& item : splitList(v)) {
+        EngineSettings settings;
+        const std::string why = parseSettings(item, &settings);
+        if (!why.empty()) return why;
+        o->also.push_back(settings);
+      }
     } else {
       return "unknown argument '" + arg + "'";
     }
@@ -126,7 +167,7 @@ struct Job {
   const EngineInfo* engine;
   const SceneSpec* scene;
   EngineSettings settings;
-  std::string sweep;  // default | velocity | position | time_step
+  std::string sweep;  // default | chosen (--also) | velocity | position | time_step
 };
 
 // The settings to run for one engine and solver on one scene: its defaults, and with --full one
@@ -292,6 +333,11 @@ int run(const Options& options) {
           (job.sweep == "default" ? jobs : sweeps).push_back(job);
         }
       }
+      if (engine->name == "impulse2d") {
+        for (const EngineSettings& settings : options.also) {
+          jobs.push_back({engine, &scene, settings, "chosen"});
+        }
+      }
     }
     jobs.insert(jobs.end(), sweeps.begin(), sweeps.end());
   }
@@ -321,18 +367,19 @@ int run(const Options& options) {
                   repeats, ms, stood ? "" : " (did not stand)");
     std::cerr << (terminal ? "\r\033[K" : "") << line << (terminal ? "" : "\n") << std::flush;
   };
-  // Jobs run in batches: the default rows of one scene together, each swept row alone. Within a
+  // Jobs run in batches: the default (and chosen) rows of one scene together, each swept row
+  // alone. Within a
   // batch the repeats go round robin over the jobs, so a change in the machine's load (it may be
   // shared) falls on every engine alike and the ratios of one run stay fair.
   for (size_t first = 0; first < jobs.size();) {
     size_t last = first + 1;
-    if (jobs[first].sweep == "default") {
-      while (last < jobs.size() && jobs[last].sweep == "default" &&
-             jobs[last].scene == jobs[first].scene) {
+    auto batched = [](const Job& job) { return job.sweep == "default" || job.sweep == "chosen"; };
+    if (batched(jobs[first])) {
+      while (last < jobs.size() && batched(jobs[last]) && jobs[last].scene == jobs[first].scene) {
         ++last;
       }
     }
-    const int repeats = jobs[first].sweep == "default" ? options.repeats : options.sweepRepeats;
+    const int repeats = batched(jobs[first]) ? options.repeats : options.sweepRepeats;
     std::vector<RunResult> results(last - first);
     std::vector<std::vector<double>> times(last - first);
     for (int r = 0; r < repeats; ++r) {

@@ -8,9 +8,10 @@ velocity-iteration sweep as a line, position-iteration and time-step sweeps as m
 docs/img/bench_scaling.png (ms/step against body count) and docs/img/bench_headline.png (the
 large pyramid and the stack of 20 side by side). --table writes the markdown table of the
 engines' defaults with the ratios impulse2d / peer, then the ratios at equal or lower error: for
-each peer at its defaults, the cheapest impulse2d row of the whole sweep (any solver, iteration
-count or time step) whose every error figure is at most the peer's, all from the same CSV (the
-same run).
+each peer at its defaults, the cheapest impulse2d row whose every error figure is at most the
+peer's, among the rows timed in the same round robin as the peers (the defaults and the
+`--also` settings, sweep "chosen"), all from the same CSV (the same run). A --full sweep shows
+which settings to give --also; --candidates lists them.
 """
 import argparse
 import csv
@@ -224,7 +225,9 @@ def equal_error_table(rows):
                   "falling_shapes"):
         peers = [r for r in rows if r["scene"] == scene and r["sweep"] == "default"
                  and r["engine"] != "impulse2d"]
-        mine = [r for r in rows if r["scene"] == scene and r["engine"] == "impulse2d"]
+        # Only rows timed beside the peers: a swept row ran alone, at another moment's load.
+        mine = [r for r in rows if r["scene"] == scene and r["engine"] == "impulse2d"
+                and r["sweep"] in ("default", "chosen")]
         for peer in peers:
             name = "%s %s" % (peer["engine"], peer["solver"])
             cells = ["%s" % scene, name, fmt(num(peer, "ms_per_step"))]
@@ -245,16 +248,38 @@ def equal_error_table(rows):
     return "\n".join(lines) + "\n"
 
 
+def candidates(rows):
+    """Text: per peer at its defaults, the impulse2d rows of the sweep with no worse errors,
+    cheapest first (their times are single runs at different moments: a guide for --also)."""
+    out = []
+    for peer in [r for r in rows if r["sweep"] == "default" and r["engine"] != "impulse2d"]:
+        mine = [r for r in rows if r["scene"] == peer["scene"] and r["engine"] == "impulse2d"
+                and no_worse(r, peer)]
+        mine.sort(key=cost)
+        out.append("%s %s %s: %s" % (peer["scene"], peer["engine"], peer["solver"], ", ".join(
+            "%s:%s:%s:%.0f (%s ms/step)" % (r["solver"], r["velocity_iterations"],
+                                            r["position_iterations"] or 0,
+                                            1.0 / num(r, "time_step"), fmt(num(r, "ms_per_step")))
+            for r in mine[:6]) or "none"))
+    return "\n".join(out)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("csv")
     parser.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                       "..", "docs", "img"))
     parser.add_argument("--table", help="write the markdown table of defaults and ratios here")
+    parser.add_argument("--candidates", action="store_true",
+                        help="print, per peer, the sweep's impulse2d settings with no worse "
+                        "errors (for impulse2d_bench --also), and plot nothing")
     args = parser.parse_args()
     rows = load(args.csv)
     if not rows:
         sys.exit("plot_bench: %s has no rows" % args.csv)
+    if args.candidates:
+        print(candidates(rows))
+        return
     os.makedirs(args.out, exist_ok=True)
     solvers_of = solvers_by_engine(rows)
     scenes = [s for s in PRIMARY if any(r["scene"] == s for r in rows)]
