@@ -45,7 +45,11 @@ add_case() {  # add_case NAME [FAILURE_MESSAGE DETAILS_FILE]
     cases+=("  <testcase classname=\"asan\" name=\"$1\"/>")
   else
     failures=$((failures + 1))
-    cases+=("  <testcase classname=\"asan\" name=\"$1\"><failure message=\"$2\"><![CDATA[$(head -c 20000 "$3" 2>/dev/null | sed 's/]]>/]] >/g')]]></failure></testcase>")
+    local tag="  <testcase classname=\"asan\" name=\"$1\"><failure message=\"$2\">" details
+    # Without the terminal's colour codes and other control characters, which XML refuses.
+    details="$(head -c 20000 "$3" 2>/dev/null | sed 's/\x1b\[[0-9;]*m//g; s/]]>/]] >/g' |
+      tr -d '\000-\010\013\014\016-\037')"
+    cases+=("$tag<![CDATA[$details]]></failure></testcase>")
   fi
 }
 write_xml() {
@@ -82,7 +86,8 @@ while read -r target; do
     [[ "$target" == $pattern ]] && listed=yes
   done
   [ "$listed" = yes ] || echo "$target" >>"$unlisted"
-done < <(make -C "$WS/build" help | sed -n 's/^\.\.\. run_tests_impulse2d_\(gtest\|rostest\|roslaunch-check\)_/\1_/p')
+done < <(make -C "$WS/build" help |
+  sed -n 's/^\.\.\. run_tests_impulse2d_\(gtest\|rostest\|roslaunch-check\)_/\1_/p')
 [ "$registered" -gt 0 ] || echo "no test targets found in $WS/build" >>"$unlisted"
 if [ -s "$unlisted" ]; then
   echo "asan: registered with catkin but neither run nor skipped by $0:" >&2
