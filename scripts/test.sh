@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # One command from a fresh machine to every test: installs what is missing, builds the catkin
-# workspace from scratch, runs the unit tests and rostests (catkin run_tests), then builds the
-# ROS-free core with AddressSanitizer + UndefinedBehaviorSanitizer and runs its unit tests again.
+# workspace from scratch, runs the unit tests and rostests (catkin run_tests), then the stages of
+# scripts/test.d/: catkin_lint, fuzzing (a core-only build without catkin, so it also proves the
+# core is ROS-free), the whole package again under AddressSanitizer + UndefinedBehaviorSanitizer
+# (unit tests, ROS unit tests, the rostests against the node and the nodelet; 35-asan.sh),
+# ThreadSanitizer on the node, the benchmark's smoke run and RViz end to end.
 # Ends with "N passed, N failed" and exits non-zero on any failure or build error.
 set -uo pipefail
 REPO="$(cd "$(dirname "$0")/.." && pwd)"
 export PATH="/usr/bin:$PATH"
 export IMPULSE2D_WS="${IMPULSE2D_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/impulse2d_ws}"
 WS="$IMPULSE2D_WS"
-ASAN_BUILD="$WS/build_sanitize"
 RESULTS="$WS/results"
 failed_steps=0
 
@@ -32,17 +34,6 @@ mkdir -p "$RESULTS"
 if ! cp -r "$WS/build/test_results" "$RESULTS/catkin" 2>/dev/null; then
   echo "=== no catkin test results" >&2
   failed_steps=$((failed_steps + 1))
-fi
-
-# Sanitizers: the core alone, built without catkin, so it also proves the core is ROS-free. All
-# unit tests but the 5050-box pyramid (a minute of stepping in the release build, too slow
-# instrumented; it runs in the catkin build above).
-if step "build (ASan+UBSan, core only)" bash -c "cmake -S '$REPO' -B '$ASAN_BUILD' -DIMPULSE2D_CORE_ONLY=ON -DIMPULSE2D_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >&2 && cmake --build '$ASAN_BUILD' -j2 >&2"; then
-  mkdir -p "$RESULTS/sanitize"
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    step "unit tests under ASan+UBSan" "$ASAN_BUILD/impulse2d_unit_tests" \
-    --gtest_filter=-HardCase.PyramidOfBaseHundredStands \
-    --gtest_output="xml:$RESULTS/sanitize/impulse2d_unit_tests.xml" >&2
 fi
 
 # Further stages, one file each, in name order: scripts/test.d/NN-name.sh. Each runs with REPO,

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scene_names.hpp"
+#include "service_call.hpp"
 
 namespace {
 
@@ -43,7 +44,7 @@ uint64_t nodeHash() {
   for (size_t i = 0; i < names.size(); ++i) {
     impulse2d::GetBodyState srv;
     srv.request.name = names[i];
-    EXPECT_TRUE(ros::service::call("/impulse2d/get_body_state", srv) && srv.response.success)
+    EXPECT_TRUE(impulse2d_test::callOnce("/impulse2d/get_body_state", srv) && srv.response.success)
         << names[i];
     const auto& r = srv.response;
     const double state[6] = {r.pose.x,         r.pose.y,         r.pose.theta,
@@ -57,7 +58,7 @@ uint64_t nodeHash() {
 void step(uint32_t steps) {
   impulse2d::Step srv;
   srv.request.steps = steps;
-  ASSERT_TRUE(ros::service::call("/impulse2d/step", srv));
+  ASSERT_TRUE(impulse2d_test::callOnce("/impulse2d/step", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
 }
 
@@ -83,7 +84,7 @@ TEST(NodeHash, MatchesTheCliAfterChunkedStepsAndAfterReset) {
   EXPECT_EQ(hex(nodeHash()), expected) << "node after 1 + 99 + 200 steps";
 
   std_srvs::Empty reset;
-  ASSERT_TRUE(ros::service::call("/impulse2d/reset", reset));
+  ASSERT_TRUE(impulse2d_test::callOnce("/impulse2d/reset", reset));
   step(kSteps);
   EXPECT_EQ(hex(nodeHash()), expected) << "node after reset and " << kSteps << " steps";
   std::printf("determinism: node and CLI %s\n", expected.c_str());

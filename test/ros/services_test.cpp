@@ -323,13 +323,11 @@ TEST(Services, ConcurrentSpawnsAreAllAnswered) {
   std::vector<std::future<std::string>> calls;
   for (int i = 0; i < kCount; ++i) {
     calls.push_back(std::async(std::launch::async, [i] {
-      // Each thread its own client and connection, so the calls really overlap.
-      ros::NodeHandle nh;
-      ros::ServiceClient client = nh.serviceClient<impulse2d::SpawnBody>(worldNs() + "/spawn_body");
+      // Each thread its own connection, so the calls really overlap.
       impulse2d::SpawnBody srv;
       srv.request.body = boxBody("burst_" + std::to_string(i), -9.0 + 2.0 * (i % 10),
                                  3.0 + 1.5 * (i / 10), 0.5, 0.5);
-      if (!client.call(srv)) return std::string("the call failed");
+      if (!callOnce(worldNs() + "/spawn_body", srv)) return std::string("the call failed");
       return srv.response.success ? std::string() : srv.response.message;
     }));
   }

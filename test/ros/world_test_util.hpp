@@ -10,6 +10,8 @@
 #include <functional>
 #include <string>
 
+#include "service_call.hpp"
+
 namespace impulse2d_test {
 
 /// The world under test's namespace, from the private parameter ~world (default /impulse2d).
@@ -27,7 +29,7 @@ bool call(const std::string& service, Srv& srv) {
     ADD_FAILURE() << name << " is not available";
     return false;
   }
-  const bool ok = ros::service::call(name, srv);
+  const bool ok = callOnce(name, srv);
   EXPECT_TRUE(ok) << "calling " << name << " failed";
   return ok;
 }
