@@ -44,7 +44,8 @@ uint64_t nodeHash() {
   for (size_t i = 0; i < names.size(); ++i) {
     impulse2d::GetBodyState srv;
     srv.request.name = names[i];
-    EXPECT_TRUE(impulse2d_test::callOnce("/impulse2d/get_body_state", srv) && srv.response.success)
+    EXPECT_TRUE(impulse2d_test::callService("/impulse2d/get_body_state", srv) &&
+                srv.response.success)
         << names[i];
     const auto& r = srv.response;
     const double state[6] = {r.pose.x,         r.pose.y,         r.pose.theta,
@@ -58,7 +59,7 @@ uint64_t nodeHash() {
 void step(uint32_t steps) {
   impulse2d::Step srv;
   srv.request.steps = steps;
-  ASSERT_TRUE(impulse2d_test::callOnce("/impulse2d/step", srv));
+  ASSERT_TRUE(impulse2d_test::callService("/impulse2d/step", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
 }
 
@@ -84,7 +85,7 @@ TEST(NodeHash, MatchesTheCliAfterChunkedStepsAndAfterReset) {
   EXPECT_EQ(hex(nodeHash()), expected) << "node after 1 + 99 + 200 steps";
 
   std_srvs::Empty reset;
-  ASSERT_TRUE(impulse2d_test::callOnce("/impulse2d/reset", reset));
+  ASSERT_TRUE(impulse2d_test::callService("/impulse2d/reset", reset));
   step(kSteps);
   EXPECT_EQ(hex(nodeHash()), expected) << "node after reset and " << kSteps << " steps";
   std::printf("determinism: node and CLI %s\n", expected.c_str());
@@ -97,5 +98,7 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "impulse2d_hash_test");
   ros::NodeHandle nh;
   if (!ros::service::waitForService("/impulse2d/step", ros::Duration(30.0))) return 1;
-  return RUN_ALL_TESTS();
+  const int result = RUN_ALL_TESTS();
+  impulse2d_test::closeServiceClients();
+  return result;
 }

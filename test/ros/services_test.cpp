@@ -320,14 +320,20 @@ TEST(Services, ResetRestoresTheStartScene) {
 
 TEST(Services, ConcurrentSpawnsAreAllAnswered) {
   constexpr int kCount = 50;
+  // Each thread its own connection, so the calls really overlap: persistent, opened before and
+  // closed after the burst (service_call.hpp says why).
+  std::vector<ros::ServiceClient> clients;
+  for (int i = 0; i < kCount; ++i) {
+    clients.push_back(ros::NodeHandle().serviceClient<impulse2d::SpawnBody>(
+        worldNs() + "/spawn_body", /*persistent=*/true));
+  }
   std::vector<std::future<std::string>> calls;
   for (int i = 0; i < kCount; ++i) {
-    calls.push_back(std::async(std::launch::async, [i] {
-      // Each thread its own connection, so the calls really overlap.
+    calls.push_back(std::async(std::launch::async, [i, &clients] {
       impulse2d::SpawnBody srv;
       srv.request.body = boxBody("burst_" + std::to_string(i), -9.0 + 2.0 * (i % 10),
                                  3.0 + 1.5 * (i / 10), 0.5, 0.5);
-      if (!callOnce(worldNs() + "/spawn_body", srv)) return std::string("the call failed");
+      if (!clients[i].call(srv)) return std::string("the call failed");
       return srv.response.success ? std::string() : srv.response.message;
     }));
   }

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const int result = RUN_ALL_TESTS();
+  impulse2d_test::closeServiceClients();
   spinner.stop();
   ros::shutdown();
   return result;

@@ -29,7 +29,7 @@ bool call(const std::string& service, Srv& srv) {
     ADD_FAILURE() << name << " is not available";
     return false;
   }
-  const bool ok = callOnce(name, srv);
+  const bool ok = callService(name, srv);
   EXPECT_TRUE(ok) << "calling " << name << " failed";
   return ok;
 }
