@@ -50,16 +50,15 @@ uint32_t featureId(uint32_t reference, uint32_t incident, bool flip) {
   return featureA | (featureB << 16);
 }
 
-// A polygon expressed in another shape's frame. Only its `count` vertices are written, and a
-// normal is rotated only when asked for (the incident-edge search of one of the two polygons):
-// the narrow phase runs for every close pair on every step, and copying a whole Polygon (16
-// slots of vertices and of normals) cost more than the transform itself.
+// A polygon expressed in another shape's frame. Only its `count` vertices are written, and its
+// normals stay in its own frame (the incident-edge search rotates the one reference normal
+// instead): the narrow phase runs for every close pair on every step, and copying a whole
+// Polygon (16 slots of vertices and of normals) cost more than the transform itself.
 struct PolygonInFrame {
   int count = 0;
   Vec2 vertices[kMaxPolygonVertices];  // left uninitialised beyond count
   const Polygon* source = nullptr;
-  Rot rotation;
-  Vec2 normal(int i) const { return rotation.apply(source->normals[i]); }
+  Rot rotation;  // from the polygon's frame into the other's
 };
 
 void transformInto(const Polygon& polygon, const Transform& xf, PolygonInFrame* out) {
@@ -76,35 +75,105 @@ struct FaceSeparation {
 
 // The face of `poly` along whose normal `other` (given in poly's frame) is separated the most.
 // For convex polygons the largest such value is the signed distance when positive and minus the
-// penetration depth along face normals when negative.
-FaceSeparation maxFaceSeparation(const Polygon& poly, const PolygonInFrame& other) {
+// penetration depth along face normals when negative. A face beyond `speculativeDistance` already
+// separates the pair, so the search stops there.
+FaceSeparation maxFaceSeparation(const Polygon& poly, const PolygonInFrame& other,
+                                 double speculativeDistance) {
   FaceSeparation best{-std::numeric_limits<double>::infinity(), 0};
   for (int i = 0; i < poly.count; ++i) {
+    const double nx = poly.normals[i].x();
+    const double ny = poly.normals[i].y();
     double deepest = std::numeric_limits<double>::infinity();
     for (int j = 0; j < other.count; ++j) {
-      deepest = std::min(deepest, poly.normals[i].dot(other.vertices[j] - poly.vertices[i]));
+      deepest = std::min(deepest, nx * other.vertices[j].x() + ny * other.vertices[j].y());
     }
-    if (deepest > best.separation) best = {deepest, i};
+    deepest -= nx * poly.vertices[i].x() + ny * poly.vertices[i].y();
+    if (deepest > best.separation) {
+      best = {deepest, i};
+      if (!(deepest <= speculativeDistance)) break;
+    }
   }
   return best;
 }
 
+// A box, as makeBox builds it: four faces whose opposite normals are exact negatives.
+bool hasOppositeFaces(const Polygon& poly) {
+  return poly.count == 4 && poly.normals[2] == -poly.normals[0] &&
+         poly.normals[3] == -poly.normals[1];
+}
+
+// Lowest and highest projection of `count` vertices on (nx, ny). Written out for four
+// vertices, the common case of a box, where the loop's bookkeeping would cost as much as the
+// arithmetic.
+void projectionRange(const Vec2* v, int count, double nx, double ny, double* lo, double* hi) {
+  if (count == 4) {
+    const double p0 = nx * v[0].x() + ny * v[0].y();
+    const double p1 = nx * v[1].x() + ny * v[1].y();
+    const double p2 = nx * v[2].x() + ny * v[2].y();
+    const double p3 = nx * v[3].x() + ny * v[3].y();
+    *lo = std::min(std::min(p0, p1), std::min(p2, p3));
+    *hi = std::max(std::max(p0, p1), std::max(p2, p3));
+    return;
+  }
+  *lo = std::numeric_limits<double>::infinity();
+  *hi = -std::numeric_limits<double>::infinity();
+  for (int j = 0; j < count; ++j) {
+    const double p = nx * v[j].x() + ny * v[j].y();
+    *lo = std::min(*lo, p);
+    *hi = std::max(*hi, p);
+  }
+}
+
+// maxFaceSeparation for a box whose first two normals and four vertices are given in some frame,
+// against `count` vertices in the same frame. Opposite faces share an axis, so one projection on
+// each of the two axes gives the separations of both faces:
+//
+//            face 2 (normal -n)
+//          +-----------+            separation of face 0 = min_j n.v_j - n.box_0
+//          |    box    |  ---> n    separation of face 2 = n.box_2 - max_j n.v_j
+//          +-----------+
+//            face 0 (normal n)
+//
+// In the box's own frame this is bit for bit what the general loop computes (negation is exact),
+// with half its products.
+FaceSeparation maxFaceSeparationBox(const Vec2& normal0, const Vec2& normal1, const Vec2* box,
+                                    const Vec2* other, int count) {
+  double separations[4];
+  const Vec2* normals[2] = {&normal0, &normal1};
+  for (int i = 0; i < 2; ++i) {
+    const double nx = normals[i]->x();
+    const double ny = normals[i]->y();
+    double lo, hi;
+    projectionRange(other, count, nx, ny, &lo, &hi);
+    separations[i] = lo - (nx * box[i].x() + ny * box[i].y());
+    separations[i + 2] = (nx * box[i + 2].x() + ny * box[i + 2].y()) - hi;
+  }
+  FaceSeparation best{separations[0], 0};
+  for (int i = 1; i < 4; ++i) {
+    if (separations[i] > best.separation) best = {separations[i], i};
+  }
+  return best;
+}
+
+// Clipping runs in scalars: a Vec2 built from two scalars and read back at once as a 16-byte
+// vector stalls the processor's store forwarding (math.hpp), and here that was most of the time.
 struct ClipVertex {
-  Vec2 p;
+  double x, y;
   uint32_t id;
 };
 
-// Keeps the part of the segment (or single point) `in` with normal.dot(p) <= offset. A point
+// Keeps the part of the segment (or single point) `in` with (nx, ny) . p <= offset. A point
 // created by the cut is named `cutId`.
-int clipSegment(const ClipVertex* in, int count, ClipVertex* out, const Vec2& normal, double offset,
-                uint32_t cutId) {
+int clipSegment(const ClipVertex* in, int count, ClipVertex* out, double nx, double ny,
+                double offset, uint32_t cutId) {
   int n = 0;
-  const double d0 = normal.dot(in[0].p) - offset;
+  const double d0 = nx * in[0].x + ny * in[0].y - offset;
   if (d0 <= 0.0) out[n++] = in[0];
   if (count < 2) return n;
-  const double d1 = normal.dot(in[1].p) - offset;
+  const double d1 = nx * in[1].x + ny * in[1].y - offset;
   if ((d0 < 0.0 && d1 > 0.0) || (d0 > 0.0 && d1 < 0.0)) {
-    out[n++] = {in[0].p + d0 / (d0 - d1) * (in[1].p - in[0].p), cutId};
+    const double t = d0 / (d0 - d1);
+    out[n++] = {in[0].x + t * (in[1].x - in[0].x), in[0].y + t * (in[1].y - in[0].y), cutId};
   }
   if (d1 <= 0.0) out[n++] = in[1];
   return n;
@@ -127,13 +196,17 @@ int clipSegment(const ClipVertex* in, int count, ClipVertex* out, const Vec2& no
 Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const Transform& xfRef,
                           int r, bool flip, double speculativeDistance) {
   Manifold m;
-  const Vec2 n = ref.normals[r];
+  const double nx = ref.normals[r].x(), ny = ref.normals[r].y();
 
-  // The incident edge is the one facing the reference face the most (most anti-parallel).
+  // The incident edge is the one facing the reference face the most (most anti-parallel),
+  // compared in the incident polygon's own frame: one rotation instead of one per normal.
+  const Rot& q = inc.rotation;
+  const double incNx = q.c * nx + q.s * ny, incNy = -q.s * nx + q.c * ny;
   int e = 0;
   double minDot = std::numeric_limits<double>::infinity();
   for (int j = 0; j < inc.count; ++j) {
-    const double d = n.dot(inc.normal(j));
+    const Vec2& normal = inc.source->normals[j];
+    const double d = incNx * normal.x() + incNy * normal.y();
     if (d < minDot) {
       minDot = d;
       e = j;
@@ -142,26 +215,30 @@ Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const T
   const int e2 = (e + 1) % inc.count;
   const uint32_t refFace = feature(r, false);
   const uint32_t incFace = feature(e, false);
-  const ClipVertex incident[2] = {{inc.vertices[e], featureId(refFace, feature(e, true), flip)},
-                                  {inc.vertices[e2], featureId(refFace, feature(e2, true), flip)}};
+  const ClipVertex incident[2] = {
+      {inc.vertices[e].x(), inc.vertices[e].y(), featureId(refFace, feature(e, true), flip)},
+      {inc.vertices[e2].x(), inc.vertices[e2].y(), featureId(refFace, feature(e2, true), flip)}};
 
   const Vec2& v1 = ref.vertices[r];
   const int r2 = (r + 1) % ref.count;
   const Vec2& v2 = ref.vertices[r2];
-  const Vec2 tangent = (v2 - v1).normalized();
+  // Counter-clockwise winding: the face runs along the normal turned a quarter to the left
+  // (shape.cpp builds the normal as the edge turned a quarter to the right), already unit.
+  const double tx = -ny, ty = nx;
   ClipVertex clip1[2];
   ClipVertex clip2[2];
-  const int count1 = clipSegment(incident, 2, clip1, -tangent, -tangent.dot(v1),
+  const int count1 = clipSegment(incident, 2, clip1, -tx, -ty, -(tx * v1.x() + ty * v1.y()),
                                  featureId(feature(r, true), incFace, flip));
   if (count1 == 0) return m;
-  const int count2 = clipSegment(clip1, count1, clip2, tangent, tangent.dot(v2),
+  const int count2 = clipSegment(clip1, count1, clip2, tx, ty, tx * v2.x() + ty * v2.y(),
                                  featureId(feature(r2, true), incFace, flip));
 
   for (int k = 0; k < count2; ++k) {
-    const double separation = n.dot(clip2[k].p - v1);
+    const double separation = nx * (clip2[k].x - v1.x()) + ny * (clip2[k].y - v1.y());
     if (!(separation <= speculativeDistance)) continue;
     ManifoldPoint& mp = m.points[m.pointCount++];
-    mp.point = xfRef.apply(clip2[k].p - 0.5 * separation * n);
+    const double half = 0.5 * separation;
+    mp.point = xfRef.apply(Vec2(clip2[k].x - half * nx, clip2[k].y - half * ny));
     mp.separation = separation;
     mp.id = clip2[k].id;
   }
@@ -169,8 +246,8 @@ Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const T
   // lets the solver see the same ids in the same slots after a flip.
   if (m.pointCount == 2 && m.points[0].id > m.points[1].id) std::swap(m.points[0], m.points[1]);
   if (m.pointCount > 0) {
-    const Vec2 worldNormal = xfRef.q.apply(n);
-    m.normal = flip ? Vec2(-worldNormal) : worldNormal;
+    const double wx = xfRef.q.c * nx - xfRef.q.s * ny, wy = xfRef.q.s * nx + xfRef.q.c * ny;
+    m.normal = flip ? Vec2(-wx, -wy) : Vec2(wx, wy);
   }
   return m;
 }
@@ -261,15 +338,31 @@ Manifold collidePolygons(const Polygon& a, const Transform& xfA, const Polygon& 
   if (a.count < 3 || b.count < 3) return Manifold();
   PolygonInFrame bInA;
   transformInto(b, xfA.inverseTimes(xfB), &bInA);
-  const FaceSeparation faceA = maxFaceSeparation(a, bInA);
+  const FaceSeparation faceA =
+      hasOppositeFaces(a)
+          ? maxFaceSeparationBox(a.normals[0], a.normals[1], a.vertices, bInA.vertices, b.count)
+          : maxFaceSeparation(a, bInA, speculativeDistance);
   if (!(faceA.separation <= speculativeDistance)) return Manifold();
+  // A box B is measured in A's frame too, where its vertices already are: two normals rotated
+  // instead of A's vertices moved into B's frame, which only a clip against B's face needs.
   PolygonInFrame aInB;
-  transformInto(a, xfB.inverseTimes(xfA), &aInB);
-  const FaceSeparation faceB = maxFaceSeparation(b, aInB);
+  const auto moveAIntoB = [&] {
+    if (aInB.source == nullptr) transformInto(a, xfB.inverseTimes(xfA), &aInB);
+  };
+  FaceSeparation faceB;
+  if (hasOppositeFaces(b)) {
+    faceB =
+        maxFaceSeparationBox(bInA.rotation.apply(b.normals[0]), bInA.rotation.apply(b.normals[1]),
+                             bInA.vertices, a.vertices, a.count);
+  } else {
+    moveAIntoB();
+    faceB = maxFaceSeparation(b, aInB, speculativeDistance);
+  }
   if (!(faceB.separation <= speculativeDistance)) return Manifold();
 
   const bool flip = faceB.separation > faceA.separation + kFlipAbsoluteTolerance +
                                            kFlipRelativeTolerance * std::abs(faceA.separation);
+  if (flip) moveAIntoB();
   Manifold m = flip ? clipIncidentEdge(b, aInB, xfB, faceB.edge, true, speculativeDistance)
                     : clipIncidentEdge(a, bInA, xfA, faceA.edge, false, speculativeDistance);
   // Two corners within the speculative distance but facing no face (diagonal corner-to-corner)
@@ -278,6 +371,7 @@ Manifold collidePolygons(const Polygon& a, const Transform& xfA, const Polygon& 
     // Deeply overlapping, a short reference face (the end of a thin bar) can miss the incident
     // edge altogether, which then lies beyond a side plane; the other polygon's best face is
     // the next best choice. Seen about once in 10^5 random deep overlaps, never when shallow.
+    moveAIntoB();
     m = flip ? clipIncidentEdge(a, bInA, xfA, faceA.edge, false, speculativeDistance)
              : clipIncidentEdge(b, aInB, xfB, faceB.edge, true, speculativeDistance);
   }
