@@ -52,11 +52,20 @@ struct Transform {
 
   Transform() = default;
   Transform(const Vec2& position, const Rot& rotation) : p(position), q(rotation) {}
-  Vec2 apply(const Vec2& v) const { return p + q.apply(v); }
-  Vec2 applyInverse(const Vec2& v) const { return q.applyInverse(v - p); }
+  // Written in scalars, with the same operations in the same order as p + q.apply(v): a Vec2
+  // built from two scalars and read back at once as one 16-byte vector (as in p + ...) stalls
+  // the processor's store forwarding, which cost more than the transform itself
+  // (docs/benchmarks.md, "Profile and optimisations").
+  Vec2 apply(const Vec2& v) const {
+    return Vec2(p.x() + (q.c * v.x() - q.s * v.y()), p.y() + (q.s * v.x() + q.c * v.y()));
+  }
+  Vec2 applyInverse(const Vec2& v) const {
+    const double dx = v.x() - p.x(), dy = v.y() - p.y();
+    return Vec2(q.c * dx + q.s * dy, -q.s * dx + q.c * dy);
+  }
   /// inverse(this) * other: `other` expressed in this frame.
   Transform inverseTimes(const Transform& other) const {
-    return Transform(q.applyInverse(other.p - p), q.inverseTimes(other.q));
+    return Transform(applyInverse(other.p), q.inverseTimes(other.q));
   }
 };
 

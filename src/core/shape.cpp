@@ -193,15 +193,20 @@ Aabb computeAabb(const Shape& shape, const Transform& xf) {
     const Vec2 r = Vec2::Constant(shape.circle.radius);
     return Aabb{p - r, p + r};
   }
+  // In scalars (math.hpp says why): called for every moving shape on every step.
   const Polygon& poly = shape.polygon;
-  Vec2 lower = xf.apply(poly.vertices[0]);
-  Vec2 upper = lower;
+  const Vec2 first = xf.apply(poly.vertices[0]);
+  double minX = first.x(), minY = first.y(), maxX = minX, maxY = minY;
   for (int i = 1; i < poly.count; ++i) {
-    const Vec2 v = xf.apply(poly.vertices[i]);
-    lower = lower.cwiseMin(v);
-    upper = upper.cwiseMax(v);
+    const Vec2& v = poly.vertices[i];
+    const double x = xf.p.x() + (xf.q.c * v.x() - xf.q.s * v.y());
+    const double y = xf.p.y() + (xf.q.s * v.x() + xf.q.c * v.y());
+    minX = std::min(minX, x);
+    minY = std::min(minY, y);
+    maxX = std::max(maxX, x);
+    maxY = std::max(maxY, y);
   }
-  return Aabb{lower, upper};
+  return Aabb{Vec2(minX, minY), Vec2(maxX, maxY)};
 }
 
 }  // namespace impulse2d
