@@ -35,6 +35,9 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
     c.againstStatic = !(a.invMass > 0.0 && b.invMass > 0.0);
+    c.blockSolve = false;
+    c.k11 = c.k12 = c.k22 = 0.0;
+    c.inverse11 = c.inverse12 = c.inverse22 = 0.0;
     c.normal = m.normal;
     extra.localNormal = a.q.applyInverse(m.normal);
     c.friction = contact.friction;
@@ -60,6 +63,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       p.normalMass = rowMass(a, b, p.normalArmA, p.normalArmB);
       p.tangentMass = rowMass(a, b, p.tangentArmA, p.tangentArmB);
       p.separation = mp.separation;
+      p.totalNormalImpulse = p.totalTangentImpulse = p.maxNormalImpulse = 0.0;
       extra.approachVelocity[i] =
           rowSpeed(a, b, m.normal.x(), m.normal.y(), p.normalArmA, p.normalArmB);
       if (mp.separation > 0.0) {
@@ -228,36 +232,49 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
     const ContactConstraintExtra& extra = extras_[k];
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
-    Vec2 normal = Vec2::Zero(), rA[2], rB[2];
+    // In scalars (math.hpp says why): normal n, lever arms rA and rB, corrections.
+    double nx = 0.0, ny = 0.0, rAx[2], rAy[2], rBx[2], rBy[2];
     double correction[2];
     // Measures point i at the current (partly corrected) poses.
     auto measure = [&](int i) {
-      normal = a.q.apply(extra.localNormal);
-      const Vec2 pointA = a.center + a.q.apply(extra.localA[i]);
-      const Vec2 pointB = b.center + b.q.apply(extra.localB[i]);
-      const double separation = (pointB - pointA).dot(normal);
-      const Vec2 mid = 0.5 * (pointA + pointB);
-      rA[i] = mid - a.center;
-      rB[i] = mid - b.center;
+      const Vec2& ln = extra.localNormal;
+      nx = a.q.c * ln.x() - a.q.s * ln.y();
+      ny = a.q.s * ln.x() + a.q.c * ln.y();
+      const Vec2& la = extra.localA[i];
+      const Vec2& lb = extra.localB[i];
+      const double pointAx = a.center.x() + (a.q.c * la.x() - a.q.s * la.y());
+      const double pointAy = a.center.y() + (a.q.s * la.x() + a.q.c * la.y());
+      const double pointBx = b.center.x() + (b.q.c * lb.x() - b.q.s * lb.y());
+      const double pointBy = b.center.y() + (b.q.s * lb.x() + b.q.c * lb.y());
+      const double separation = (pointBx - pointAx) * nx + (pointBy - pointAy) * ny;
+      const double midX = 0.5 * (pointAx + pointBx), midY = 0.5 * (pointAy + pointBy);
+      rAx[i] = midX - a.center.x();
+      rAy[i] = midY - a.center.y();
+      rBx[i] = midX - b.center.x();
+      rBy[i] = midY - b.center.y();
       deepest = std::min(deepest, separation);
       correction[i] =
           std::clamp(def.baumgarte * (separation + def.linearSlop), -kMaxLinearCorrection, 0.0);
     };
     auto push = [&](int i, double amount) {
-      const Vec2 impulse = amount * normal;
-      a.center -= a.invMass * impulse;
-      turnBy(a, -a.invInertia * cross(rA[i], impulse));
-      b.center += b.invMass * impulse;
-      turnBy(b, b.invInertia * cross(rB[i], impulse));
+      const double px = amount * nx, py = amount * ny;
+      a.center.x() -= a.invMass * px;
+      a.center.y() -= a.invMass * py;
+      turnBy(a, -a.invInertia * (rAx[i] * py - rAy[i] * px));
+      b.center.x() += b.invMass * px;
+      b.center.y() += b.invMass * py;
+      turnBy(b, b.invInertia * (rBx[i] * py - rBy[i] * px));
     };
+    auto normalArmA = [&](int i) { return rAx[i] * ny - rAy[i] * nx; };
+    auto normalArmB = [&](int i) { return rBx[i] * ny - rBy[i] * nx; };
     if (c.pointCount == 2) {
       // Both points together, as in the velocity pass: one after the other would tilt the body
       // a little every pass, and a tall stack leans over.
       measure(0);
       measure(1);
       if (correction[0] == 0.0 && correction[1] == 0.0) continue;  // both within the slop
-      const double rn1A = cross(rA[0], normal), rn1B = cross(rB[0], normal);
-      const double rn2A = cross(rA[1], normal), rn2B = cross(rB[1], normal);
+      const double rn1A = normalArmA(0), rn1B = normalArmB(0);
+      const double rn2A = normalArmA(1), rn2B = normalArmB(1);
       const double m = a.invMass + b.invMass;
       const double k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
       const double k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
@@ -273,7 +290,7 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
     // One point, or a pair too degenerate for the block: one at a time.
     for (int i = 0; i < c.pointCount; ++i) {
       measure(i);
-      push(i, -correction[i] * rowMass(a, b, cross(rA[i], normal), cross(rB[i], normal)));
+      push(i, -correction[i] * rowMass(a, b, normalArmA(i), normalArmB(i)));
     }
   }
   return deepest >= -3.0 * def.linearSlop;

@@ -19,41 +19,47 @@
 
 namespace impulse2d {
 
+// These three are built only by ContactSolver::prepare, which writes every field; their
+// constructors leave them unset on purpose: zeroing them first cost a `rep stos` per contact,
+// 4 % of a small scene's step (docs/benchmarks.md, "Profile and optimisations").
 struct ContactConstraintPoint {
-  double normalArmA = 0.0, normalArmB = 0.0;    // cross(rA, n), cross(rB, n)
-  double tangentArmA = 0.0, tangentArmB = 0.0;  // cross(rA, t), cross(rB, t), t = perp(n)
-  double normalImpulse = 0.0, tangentImpulse = 0.0;
-  double normalMass = 0.0, tangentMass = 0.0;
-  double targetVelocity = 0.0;  // one-pass solvers: the normal velocity the point must reach
-  double separation = 0.0;      // at the pre-step
+  ContactConstraintPoint() {}       // prepare() sets every field
+  double normalArmA, normalArmB;    // cross(rA, n), cross(rB, n)
+  double tangentArmA, tangentArmB;  // cross(rA, t), cross(rB, t), t = perp(n)
+  double normalImpulse, tangentImpulse;
+  double normalMass, tangentMass;
+  double targetVelocity;  // one-pass solvers: the normal velocity the point must reach
+  double separation;      // at the pre-step
   // Sub-steps: the contact point fixed in each body (body frame, from the centre of mass), so
   // the separation can be followed through the sub-steps without a new narrow phase.
-  Vec2 anchorA = Vec2::Zero(), anchorB = Vec2::Zero();
-  double totalNormalImpulse = 0.0, totalTangentImpulse = 0.0;  // summed over the sub-steps
-  double maxNormalImpulse = 0.0;  // largest of any sub-step (restitution: did it push at all?)
+  Vec2 anchorA, anchorB;
+  double totalNormalImpulse, totalTangentImpulse;  // summed over the sub-steps
+  double maxNormalImpulse;  // largest of any sub-step (restitution: did it push at all?)
 };
 
 struct ContactConstraint {
-  int a = -1, b = -1;  // entries in the step's SolverBodies
-  int pointCount = 0;
+  ContactConstraint() {}  // prepare() sets every field
+  int a, b;               // entries in the step's SolverBodies
+  int pointCount;
   // Two-point manifolds whose points are not (nearly) redundant solve both normal impulses at
   // once: k is their 2x2 effective-mass matrix, inverse its inverse (both used when set).
-  bool blockSolve = false;
-  bool againstStatic = false;  // one body cannot move (the soft step's stiffer spring)
-  Vec2 normal = Vec2::Zero();
-  double friction = 0.0, restitution = 0.0;
-  double k11 = 0.0, k12 = 0.0, k22 = 0.0;
-  double inverse11 = 0.0, inverse12 = 0.0, inverse22 = 0.0;
-  ContactConstraintPoint points[2];
+  bool blockSolve;
+  bool againstStatic;  // one body cannot move (the soft step's stiffer spring)
+  Vec2 normal;
+  double friction, restitution;
+  double k11, k12, k22;
+  double inverse11, inverse12, inverse22;
+  ContactConstraintPoint points[2];  // the first pointCount are set
 };
 
 /// What only the pre-step, restitution, storing and the position pass read, by constraint.
 struct ContactConstraintExtra {
-  Contact* contact = nullptr;
-  Vec2 localNormal = Vec2::Zero();                // in A's frame, for NGS
-  Vec2 localA[2] = {Vec2::Zero(), Vec2::Zero()};  // surface points, body frames, for NGS
-  Vec2 localB[2] = {Vec2::Zero(), Vec2::Zero()};  //
-  double approachVelocity[2] = {0.0, 0.0};        // normal velocity before solving
+  ContactConstraintExtra() {}  // prepare() sets every field
+  Contact* contact;
+  Vec2 localNormal;            // in A's frame, for NGS
+  Vec2 localA[2];              // surface points, body frames, for NGS (the first pointCount)
+  Vec2 localB[2];              //
+  double approachVelocity[2];  // normal velocity before solving (the first pointCount)
 };
 
 class ContactSolver {
