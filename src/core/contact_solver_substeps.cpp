@@ -57,6 +57,13 @@ void ContactSolver::solveSubstep(double h, bool useBias, bool relax, double maxP
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
     solveFriction(c, a, b);
+    // Each total summed right after its own row, not both together afterwards: GCC's vectoriser
+    // pairs those two sums into one 16-byte load of impulses just stored as scalars, which stalls
+    // store forwarding (math.hpp).
+    if (relax) {
+      for (int i = 0; i < c.pointCount; ++i)
+        c.points[i].totalTangentImpulse += c.points[i].tangentImpulse;
+    }
 
     // Not touching: close the gap within the sub-step, no further (a bias of s / h). Touching:
     // no bias, or the soft step's push.
@@ -104,11 +111,8 @@ void ContactSolver::solveSubstep(double h, bool useBias, bool relax, double maxP
       }
     }
     if (relax) {
-      for (int i = 0; i < c.pointCount; ++i) {
-        ContactConstraintPoint& p = c.points[i];
-        p.totalNormalImpulse += p.normalImpulse;
-        p.totalTangentImpulse += p.tangentImpulse;
-      }
+      for (int i = 0; i < c.pointCount; ++i)
+        c.points[i].totalNormalImpulse += c.points[i].normalImpulse;
     }
   }
 }
