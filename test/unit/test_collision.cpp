@@ -160,6 +160,38 @@ TEST(CollidePolygons, FeatureIdsStableUnderSmallMotion) {
 // face is the bar's short end cap, and the face of B most opposed to it lies beside the bar,
 // beyond the cap's side planes, so clipping against the cap leaves nothing. B's best face must
 // then be used: the cap vertices against B's face (-0.68, -0.27) -> (-0.45, 0.23).
+// Boxes whose opposite normals are exact negatives (makeBox's) take a shortcut in the separating
+// axis test; the same boxes with one normal off by an ulp take the general loop. The manifolds
+// must agree to round-off, over random sizes and poses, touching or not.
+TEST(CollidePolygons, BoxShortcutMatchesTheGeneralPolygonPath) {
+  std::mt19937 rng(20261123);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto general = [](Polygon box) {
+    box.normals[2].x() = std::nextafter(box.normals[2].x(), 2.0);
+    return box;
+  };
+  int touching = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    SCOPED_TRACE(trial);
+    const Polygon a = makeBox(0.05 + 3.0 * unit(rng), 0.05 + 3.0 * unit(rng));
+    const Polygon b = makeBox(0.05 + 3.0 * unit(rng), 0.05 + 3.0 * unit(rng));
+    const Transform xfA(Vec2(unit(rng) - 0.5, unit(rng) - 0.5), Rot(2.0 * kPi * unit(rng)));
+    const Transform xfB(Vec2(4.0 * unit(rng) - 2.0, 4.0 * unit(rng) - 2.0),
+                        Rot(trial % 4 == 0 ? 0.0 : 2.0 * kPi * unit(rng)));
+    const Manifold fast = collidePolygons(a, xfA, b, xfB, kSpeculative);
+    const Manifold slow = collidePolygons(general(a), xfA, general(b), xfB, kSpeculative);
+    ASSERT_EQ(fast.pointCount, slow.pointCount);
+    if (fast.pointCount > 0) ++touching;
+    for (int k = 0; k < fast.pointCount; ++k) {
+      EXPECT_EQ(fast.points[k].id, slow.points[k].id);
+      EXPECT_NEAR(fast.points[k].separation, slow.points[k].separation, 1e-12);
+      EXPECT_NEAR((fast.points[k].point - slow.points[k].point).norm(), 0.0, 1e-12);
+      EXPECT_NEAR((fast.normal - slow.normal).norm(), 0.0, 1e-12);
+    }
+  }
+  EXPECT_GT(touching, 1000);  // the comparison covered contacts, not only misses
+}
+
 TEST(CollidePolygons, DeepOverlapBehindAShortReferenceFace) {
   Shape bar, heptagon;
   ASSERT_EQ(
