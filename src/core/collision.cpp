@@ -200,13 +200,12 @@ Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const T
 
   // The incident edge is the one facing the reference face the most (most anti-parallel),
   // compared in the incident polygon's own frame: one rotation instead of one per normal.
-  const Rot& q = inc.rotation;
-  const double incNx = q.c * nx + q.s * ny, incNy = -q.s * nx + q.c * ny;
+  const Vec2 nInInc = inc.rotation.applyInverse(ref.normals[r]);
   int e = 0;
   double minDot = std::numeric_limits<double>::infinity();
   for (int j = 0; j < inc.count; ++j) {
     const Vec2& normal = inc.source->normals[j];
-    const double d = incNx * normal.x() + incNy * normal.y();
+    const double d = nInInc.x() * normal.x() + nInInc.y() * normal.y();
     if (d < minDot) {
       minDot = d;
       e = j;
@@ -246,8 +245,8 @@ Manifold clipIncidentEdge(const Polygon& ref, const PolygonInFrame& inc, const T
   // lets the solver see the same ids in the same slots after a flip.
   if (m.pointCount == 2 && m.points[0].id > m.points[1].id) std::swap(m.points[0], m.points[1]);
   if (m.pointCount > 0) {
-    const double wx = xfRef.q.c * nx - xfRef.q.s * ny, wy = xfRef.q.s * nx + xfRef.q.c * ny;
-    m.normal = flip ? Vec2(-wx, -wy) : Vec2(wx, wy);
+    const Vec2 world = xfRef.q.apply(ref.normals[r]);
+    m.normal = flip ? Vec2(-world.x(), -world.y()) : Vec2(world.x(), world.y());
   }
   return m;
 }

@@ -237,15 +237,12 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
     double correction[2];
     // Measures point i at the current (partly corrected) poses.
     auto measure = [&](int i) {
-      const Vec2& ln = extra.localNormal;
-      nx = a.q.c * ln.x() - a.q.s * ln.y();
-      ny = a.q.s * ln.x() + a.q.c * ln.y();
-      const Vec2& la = extra.localA[i];
-      const Vec2& lb = extra.localB[i];
-      const double pointAx = a.center.x() + (a.q.c * la.x() - a.q.s * la.y());
-      const double pointAy = a.center.y() + (a.q.s * la.x() + a.q.c * la.y());
-      const double pointBx = b.center.x() + (b.q.c * lb.x() - b.q.s * lb.y());
-      const double pointBy = b.center.y() + (b.q.s * lb.x() + b.q.c * lb.y());
+      const Vec2 normal = a.q.apply(extra.localNormal);
+      nx = normal.x();
+      ny = normal.y();
+      const Vec2 armA = a.q.apply(extra.localA[i]), armB = b.q.apply(extra.localB[i]);
+      const double pointAx = a.center.x() + armA.x(), pointAy = a.center.y() + armA.y();
+      const double pointBx = b.center.x() + armB.x(), pointBy = b.center.y() + armB.y();
       const double separation = (pointBx - pointAx) * nx + (pointBy - pointAy) * ny;
       const double midX = 0.5 * (pointAx + pointBx), midY = 0.5 * (pointAy + pointBy);
       rAx[i] = midX - a.center.x();

@@ -198,9 +198,8 @@ Aabb computeAabb(const Shape& shape, const Transform& xf) {
   const Vec2 first = xf.apply(poly.vertices[0]);
   double minX = first.x(), minY = first.y(), maxX = minX, maxY = minY;
   for (int i = 1; i < poly.count; ++i) {
-    const Vec2& v = poly.vertices[i];
-    const double x = xf.p.x() + (xf.q.c * v.x() - xf.q.s * v.y());
-    const double y = xf.p.y() + (xf.q.s * v.x() + xf.q.c * v.y());
+    const Vec2 v = xf.apply(poly.vertices[i]);
+    const double x = v.x(), y = v.y();
     minX = std::min(minX, x);
     minY = std::min(minY, y);
     maxX = std::max(maxX, x);
