@@ -16,10 +16,11 @@
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"
-WS="${IMPULSE2D_WS:-/tmp/impulse2d_ws}-asan"
 export PATH="/usr/bin:$PATH"
-mkdir -p "$WS/src" "$STAGE_RESULTS"
-ln -sfn "$REPO" "$WS/src/impulse2d"
+# shellcheck source=lib/side_workspace.bash
+source "$REPO/scripts/test.d/lib/side_workspace.bash"
+side_workspace asan
+mkdir -p "$STAGE_RESULTS"
 
 # The gtest programs run directly, and the rostests (test/ros/NAME.test); TARGETS builds them
 # all: the gtests, the rostests' clients, the node, the nodelet plugin and the CLI.
@@ -100,10 +101,7 @@ fi
 LOGS="$STAGE_RESULTS/sanitizer"
 rm -rf "$LOGS" "$STAGE_RESULTS/gtest" "$STAGE_RESULTS/rostest" "$STAGE_RESULTS/roslog"
 mkdir -p "$LOGS" "$STAGE_RESULTS/gtest" "$STAGE_RESULTS/rostest" "$STAGE_RESULTS/roslog"
-set +u  # ROS's setup scripts read unset variables
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
-set -u
+source_side_workspace
 # log_path: each process writes its ASan and LeakSanitizer reports to $LOGS/asan.PID; nothing is
 # written when there is nothing to report. UBSan ignores log_path next to ASan (GCC 12's
 # separate libubsan): its reports go to stderr, which is kept for every process: the gtests' and

@@ -8,10 +8,11 @@
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"
-WS="${IMPULSE2D_WS:-/tmp/impulse2d_ws}-tsan"
 export PATH="/usr/bin:$PATH"
-mkdir -p "$WS/src" "$STAGE_RESULTS"
-ln -sfn "$REPO" "$WS/src/impulse2d"
+# shellcheck source=lib/side_workspace.bash
+source "$REPO/scripts/test.d/lib/side_workspace.bash"
+side_workspace tsan
+mkdir -p "$STAGE_RESULTS"
 if ! (cd "$WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DIMPULSE2D_TSAN=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -j"$(nproc)" impulse2d_node impulse2d_world_tests \
     >"$STAGE_RESULTS/build.log" 2>&1); then
@@ -19,10 +20,7 @@ if ! (cd "$WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DIMPULSE2D_T
   exit 1
 fi
 rm -f "$STAGE_RESULTS"/tsan.*
-set +u  # ROS's setup scripts read unset variables
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
-set -u
+source_side_workspace
 export TSAN_OPTIONS="suppressions=$REPO/test/ros/tsan.supp log_path=$STAGE_RESULTS/tsan second_deadlock_stack=1"
 ROS_TEST_RESULTS_DIR="$STAGE_RESULTS/rostest" rostest impulse2d tsan.test >"$STAGE_RESULTS/rostest.log" 2>&1
 rc=$?
