@@ -105,6 +105,10 @@ struct WorldDef {
   double contactDampingRatio = 10.0;  ///< strongly over-damped: no bounce from the push
   double jointHertz = 60.0;           ///< Hz
   double jointDampingRatio = 2.0;
+  /// Threads that step the sub-stepping solvers (substep, soft): 1 runs on the calling thread;
+  /// more share each colour of contacts among oneTBB tasks. The result is bit-identical for
+  /// any number.
+  int threads = 1;
   bool enableSleep = true;               ///< still islands stop costing anything
   double timeToSleep = 0.5;              ///< s an island must be still before it sleeps
   double sleepLinearTolerance = 0.01;    ///< m/s, slower counts as still

@@ -3,13 +3,17 @@
 #pragma once
 
 #include "contact.hpp"
+#include "contact_bundles.hpp"
 #include "contact_solver.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
 #include "solver_body.hpp"
+#include "step_workers.hpp"
+#include "substep_bodies.hpp"
 
 #include <impulse2d/world.hpp>
 
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -89,8 +93,14 @@ struct WorldImpl {
   std::vector<std::pair<int, int>> newPairs;
   std::vector<Contact> newContacts;
 
-  SolverBodies solverBodies;  // stages 4-6 and 8 work on these, not on `bodies`
+  // The one-pass solvers (baumgarte, ngs) work on these, not on `bodies`.
+  SolverBodies solverBodies;
   ContactSolver contactSolver;
+  // The sub-stepping solvers (world_substeps.cpp) on these, on the step's threads.
+  SubstepBodies substepBodies;
+  ContactBundles contactBundles;
+  StepWorkers stepWorkers;
+  std::vector<double> blockDeepest;  // the NGS pass's deepest separation, by block
   // Reused buffers of the island pass (island_sleep.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
     int slot;
@@ -98,7 +108,6 @@ struct WorldImpl {
     double startAngle;
   };
   std::vector<FastBody> fastBodies;
-  std::vector<FastBody> stepStart;  // sub-stepping solvers: where moving bodies began the step
   std::vector<int> activeJoints;    // joints with an awake dynamic body, this step
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
   double time = 0.0;
@@ -137,6 +146,11 @@ struct WorldImpl {
   void integrateVelocities(double dt);
   void solve(double dt);
   void solveSubsteps(double dt);
+  /// Runs fn on every active joint with scalar views of its bodies, and writes back what it
+  /// changed (the poses too when `pose`), in the sub-stepping solvers.
+  void forEachJoint(const std::function<void(Joint&, SolverBody&, SolverBody&)>& fn,
+                    bool pose = false);
+  void correctSubstepPositions(BundlePass pass);
   /// Lists the joints of bodies the step moves, with their solver entries.
   void collectActiveJoints();
   /// Prepares the active joints for a pass of time step dt with the given feedback.

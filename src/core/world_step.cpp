@@ -13,17 +13,18 @@ void World::step() {
   w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
   w.findNewContacts();   // 2. newly overlapping pairs become arbiters
   w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
-  w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
+  w.stepWorkers.setThreads(w.def.threads);
   if (usesSubsteps(w.def.solver)) {
-    w.solveSubsteps(dt);  // 4-6 in sub-steps (world_substeps.cpp)
+    w.solveSubsteps(dt);  // 4-6 in sub-steps, and 8 (world_substeps.cpp)
   } else {
+    w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
     w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
     w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
     w.integratePositions(dt);   // 6. move with the solved velocities
+    w.solverBodies.storeMotion(w.bodies.items);
   }
-  w.solverBodies.storeMotion(w.bodies.items);
   w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
-  w.correctPositions();   // 8. NGS solvers only: push remaining overlaps apart
+  w.correctPositions();   // 8. ngs: push remaining overlaps apart
   w.updateSleep(dt);      // 9. islands still for long enough fall asleep
   removeEscapedBodies();  // 10. bodies that left the world extent are removed, not computed
   w.clearForces();
@@ -221,9 +222,7 @@ void WorldImpl::integratePositions(double dt) {
 }
 
 void WorldImpl::correctPositions() {
-  if (def.solver != SolverType::NonlinearGaussSeidel && def.solver != SolverType::SubstepNgs) {
-    return;
-  }
+  if (def.solver != SolverType::NonlinearGaussSeidel) return;
   solverBodies.loadPoses(bodies.items);  // continuous collision may have moved some
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;

@@ -1,0 +1,137 @@
+// The sub-stepping solvers' contacts, eight at a time. The contacts of one colour
+// (constraint_coloring.hpp) are packed into bundles of kBundleLanes lanes, structure of arrays,
+// so that a SIMD kernel (contact_kernels.cpp) solves a bundle's lanes at once: 2, 4 or 8 doubles
+// a register, whatever the processor, on the same layout. A bundle holds only what every pass
+// reads; what restitution, the relax totals and storing read is in BundleExtra.
+//
+// Each lane is one contact of up to two points. A point is held as an anchor on each body,
+// measured from its centre of mass in the world's orientation when the step began:
+//
+//        aA  ->  * <-  aB         the manifold point, seen from both centres (aA = aB + cB - cA)
+//   cA  o               o  cB
+//
+// Through the sub-steps the separation follows the anchors turned with their bodies,
+//   s = baseSeparation + n . (dB - dA + qB aB - qA aA),
+// while the rows act at one point of both bodies, the anchors moved by half their bodies'
+// relative move, rA = aA + (dB - dA) / 2 and rB = aB - (dB - dA) / 2: equal and opposite impulses
+// at one point keep angular momentum (with an anchor of its own on each body they would not).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "contact.hpp"
+#include "feedback.hpp"
+#include "substep_bodies.hpp"
+
+#include <impulse2d/defs.hpp>
+
+namespace impulse2d {
+
+constexpr int kBundleLanes = 8;
+
+struct BundlePoint {
+  double anchorAx[kBundleLanes], anchorAy[kBundleLanes];  // m, from A's centre of mass
+  double anchorBx[kBundleLanes], anchorBy[kBundleLanes];  // m, from B's centre of mass
+  double baseSeparation[kBundleLanes];  // m, the separation minus n . (aB - aA): see above
+  double normalMass[kBundleLanes], tangentMass[kBundleLanes];  // kg; 0 for an absent point
+  double normalImpulse[kBundleLanes], tangentImpulse[kBundleLanes];  // N s, accumulated
+};
+
+struct alignas(64) ContactBundle {
+  ContactBundle() {}  // prepare() writes every field of every lane: no zeroing first
+  // BodyState offsets (row * kStateDoubles) of each lane's bodies; a lane that must not write
+  // its body back (static, kinematic, an empty lane) holds ~offset.
+  int64_t offsetA[kBundleLanes], offsetB[kBundleLanes];
+  double invMassA[kBundleLanes], invInertiaA[kBundleLanes];
+  double invMassB[kBundleLanes], invInertiaB[kBundleLanes];
+  double normalX[kBundleLanes], normalY[kBundleLanes];
+  double friction[kBundleLanes];
+  // The two normal rows' 2x2 block K and its inverse. A one-point lane has K12 = K22 = 0 and
+  // inverse (1 / K11, 0, 0), which the block solve turns into the one-row solve.
+  double k11[kBundleLanes], k12[kBundleLanes], k22[kBundleLanes];
+  double inverse11[kBundleLanes], inverse12[kBundleLanes], inverse22[kBundleLanes];
+  BundlePoint points[2];
+  // 1 for a two-point lane too ill-conditioned for the block: its points are solved in turn.
+  double sequential[kBundleLanes];
+  double againstStatic[kBundleLanes];  // 1 when one body cannot move (the soft step's spring)
+  int laneCount;
+  bool anySequential;
+  bool anyRestitution;
+};
+
+struct alignas(64) BundleExtra {
+  BundleExtra() {}  // as ContactBundle
+  Contact* contact[kBundleLanes];
+  double restitution[kBundleLanes];
+  double approach[2][kBundleLanes];  // m/s, the lowest normal speed before a solve (restitution)
+  double maxNormalImpulse[2][kBundleLanes];
+  double totalNormalImpulse[2][kBundleLanes], totalTangentImpulse[2][kBundleLanes];
+};
+
+/// One pass of a kernel over some bundles.
+struct BundlePass {
+  ContactBundle* bundles = nullptr;
+  BundleExtra* extras = nullptr;
+  double* states = nullptr;  // SubstepBodies::states(), as doubles
+  int64_t sinkOffset = 0;    // this worker's sink row * kStateDoubles
+  double h = 0.0, inverseH = 0.0;
+  bool useBias = false;  // the soft step's push (springs of dynamicSoft and staticSoft)
+  bool relax = false;    // add this pass's impulses to the step's totals
+  double maxPushVelocity = 0.0;
+  Feedback dynamicSoft, staticSoft;
+  double restitutionThreshold = 0.0;
+  // Position pass (NGS).
+  double baumgarte = 0.0, linearSlop = 0.0, maxLinearCorrection = 0.0;
+};
+
+/// The colours' bundles of one step, built from the touching contacts of moving bodies.
+class ContactBundles {
+ public:
+  /// Colours the constraints and assigns each contact its lane: colour by colour, then the
+  /// overflow, whose bundles are solved one lane after the other.
+  void build(std::vector<Contact>& contacts, const SubstepBodies& bodies);
+  /// Fills the bundles [begin, end) from their contacts at the step's start; impulses are the
+  /// arbiters' whole-step ones divided among `substeps`.
+  void prepare(int begin, int end, const SubstepBodies& bodies, const std::vector<Body>& items,
+               int substeps);
+  /// Writes the step's summed impulses of the bundles [begin, end) back into their contacts.
+  void store(int begin, int end) const;
+
+  int colorCount() const { return static_cast<int>(colorStart_.size()) - 1; }
+  int colorBegin(int color) const { return colorStart_[color]; }
+  int colorEnd(int color) const { return colorStart_[color + 1]; }
+  int overflowBegin() const { return colorStart_.back(); }
+  int bundleCount() const { return static_cast<int>(bundles_.size()); }
+  size_t contactCount() const { return contactCount_; }
+
+  BundlePass pass(SubstepBodies& bodies) {
+    BundlePass p;
+    p.bundles = bundles_.data();
+    p.extras = extras_.data();
+    p.states = &bodies.states()->vx;
+    return p;
+  }
+
+ private:
+  std::vector<ContactBundle> bundles_;
+  std::vector<BundleExtra> extras_;
+  std::vector<int> colorStart_;  // bundles of colour c: [colorStart_[c], colorStart_[c + 1])
+  std::vector<std::vector<Contact*>> byColor_;  // scratch of build()
+  size_t contactCount_ = 0;
+};
+
+// --- the SIMD kernels (contact_kernels.cpp), over the bundles [begin, end) ---
+// Colour bundles are solved lane-parallel, overflow bundles (`oneByOne`) one lane at a time.
+
+void warmStartBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
+/// One iteration: friction, then both normal rows (rigid, or the soft step's push).
+void solveBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
+/// Bounces points that approached faster than the threshold, once, after the sub-steps.
+void restituteBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
+/// One non-linear Gauss-Seidel pass on positions; returns the deepest separation measured.
+double solveBundlePositions(const BundlePass& pass, int begin, int end, bool oneByOne);
+/// The name of the instruction set the kernels run on ("AVX3", "AVX2", "SSE4", "EMU128").
+const char* contactKernelTarget();
+
+}  // namespace impulse2d
