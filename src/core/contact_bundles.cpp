@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <cstdio>
-#include <cstdlib>
 
 #include "constraint_coloring.hpp"
 #include "contact_math.hpp"
@@ -12,56 +9,68 @@
 namespace impulse2d {
 namespace {
 
-// The lanes of a colour's bundles, or of the overflow's, filled in the contacts' order.
-void appendBundles(const std::vector<Contact*>& contacts, std::vector<ContactBundle>& bundles,
-                   std::vector<BundleExtra>& extras) {
-  for (size_t first = 0; first < contacts.size(); first += kBundleLanes) {
-    ContactBundle& bundle = bundles.emplace_back();
-    BundleExtra& extra = extras.emplace_back();
-    const size_t count = std::min<size_t>(kBundleLanes, contacts.size() - first);
-    bundle.laneCount = static_cast<int>(count);
-    for (size_t lane = 0; lane < kBundleLanes; ++lane) {
-      extra.contact[lane] = lane < count ? contacts[first + lane] : nullptr;
-    }
-  }
+// A contact takes the first colour free for both its bodies at or after a colour picked by its
+// key's hash among the first kColorSpread. Plain first fit in key order gives every body its
+// contacts in the same pattern (a box's left support before its right one, across the whole
+// pile), and Gauss-Seidel in such a systematic order leans tall piles over: the 5050-box pyramid
+// moved 1.9 m sideways in 300 steps; spread over 8 colours it moves 7 mm (12 colours in all).
+constexpr int kColorSpread = 8;
+// Colours of fewer contacts than this join the overflow.
+constexpr int kMinColorSize = 2 * kBundleLanes;
+
+int startColor(uint64_t key) {
+  key ^= key >> 33;
+  key *= 0xff51afd7ed558ccdull;
+  key ^= key >> 33;
+  return static_cast<int>(key % kColorSpread);
 }
 
 // A body as a lane sees it: the row it reads (~row when it must not write it back), its inverse
-// masses, its centre of mass and velocity when the step began.
+// masses, its centre of mass and velocity when the step began. In scalars, as everything in
+// fillLane: a Vec2 stored as two doubles and read back at once as one 16-byte vector stalls the
+// processor's store forwarding (math.hpp), and that was most of this stage's time.
 struct LaneBody {
   int64_t offset;
   double invMass, invInertia;
-  Vec2 center, velocity;
-  double angularVelocity;
+  double cx, cy, vx, vy, w;
 };
 
 LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, int slot) {
-  const int64_t read = bodies.readRow(slot) * kStateDoubles;
-  const bool writes = bodies.writeRow(slot) >= 0;
-  LaneBody out{writes ? read : ~read, 0.0, 0.0, items[slot].center, Vec2::Zero(), 0.0};
   const int entry = bodies.entryOf(slot);
-  if (entry >= 0) {
-    const BodyState& s = bodies.states()[entry];
-    out.velocity = Vec2(s.vx, s.vy);
-    out.angularVelocity = s.w;
-    out.invMass = bodies.sim(entry).invMass;
-    out.invInertia = bodies.sim(entry).invInertia;
+  if (entry < 0) {  // static or asleep: the identity row, read only
+    const Vec2& c = items[slot].center;
+    return {~(bodies.identityRow() * kStateDoubles), 0.0, 0.0, c.x(), c.y(), 0.0, 0.0, 0.0};
   }
-  return out;
+  const BodySim& sim = bodies.sim(entry);
+  const BodyState& s = bodies.states()[entry];
+  const int64_t offset = entry * kStateDoubles;
+  return {bodies.isDynamicEntry(entry) ? offset : ~offset,
+          sim.invMass,
+          sim.invInertia,
+          sim.center0.x(),
+          sim.center0.y(),
+          s.vx,
+          s.vy,
+          s.w};
 }
 
-void setPoint(BundlePoint& p, int lane, const Vec2& anchorA, const Vec2& anchorB,
-              double baseSeparation, double normalMass, double tangentMass, double normalImpulse,
-              double tangentImpulse) {
-  p.anchorAx[lane] = anchorA.x();
-  p.anchorAy[lane] = anchorA.y();
-  p.anchorBx[lane] = anchorB.x();
-  p.anchorBy[lane] = anchorB.y();
+void setPoint(BundlePoint& p, int lane, double anchorAx, double anchorAy, double anchorBx,
+              double anchorBy, double baseSeparation, double normalMass, double tangentMass,
+              double normalImpulse, double tangentImpulse) {
+  p.anchorAx[lane] = anchorAx;
+  p.anchorAy[lane] = anchorAy;
+  p.anchorBx[lane] = anchorBx;
+  p.anchorBy[lane] = anchorBy;
   p.baseSeparation[lane] = baseSeparation;
   p.normalMass[lane] = normalMass;
   p.tangentMass[lane] = tangentMass;
   p.normalImpulse[lane] = normalImpulse;
   p.tangentImpulse[lane] = tangentImpulse;
+}
+
+void clearPointTotals(BundleExtra& e, int i, int lane) {
+  e.approach[i][lane] = e.maxNormalImpulse[i][lane] = 0.0;
+  e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
 }
 
 // A lane without a contact: it reads the identity row, writes the sink, and every impulse it
@@ -73,175 +82,167 @@ void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int64_t identityOf
   c.k11[lane] = c.k12[lane] = c.k22[lane] = 0.0;
   c.inverse11[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
   c.sequential[lane] = c.againstStatic[lane] = 0.0;
-  for (BundlePoint& p : c.points) setPoint(p, lane, Vec2::Zero(), Vec2::Zero(), 0, 0, 0, 0, 0);
   e.restitution[lane] = 0.0;
   for (int i = 0; i < 2; ++i) {
-    e.approach[i][lane] = e.maxNormalImpulse[i][lane] = 0.0;
-    e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
+    setPoint(c.points[i], lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    clearPointTotals(e, i, lane);
+  }
+}
+
+// One contact's lane, as the step begins.
+void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact,
+              const LaneBody& a, const LaneBody& b, int substeps) {
+  const Manifold& m = contact.manifold;
+  c.offsetA[lane] = a.offset;
+  c.offsetB[lane] = b.offset;
+  c.invMassA[lane] = a.invMass;
+  c.invInertiaA[lane] = a.invInertia;
+  c.invMassB[lane] = b.invMass;
+  c.invInertiaB[lane] = b.invInertia;
+  c.normalX[lane] = m.normal.x();
+  c.normalY[lane] = m.normal.y();
+  c.friction[lane] = contact.friction;
+  c.againstStatic[lane] = a.invMass > 0.0 && b.invMass > 0.0 ? 0.0 : 1.0;
+  e.restitution[lane] = contact.restitution;
+  const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
+  const double mass = a.invMass + b.invMass;
+  double normalArmA[2] = {0.0, 0.0}, normalArmB[2] = {0.0, 0.0};
+  for (int i = 0; i < 2; ++i) {
+    clearPointTotals(e, i, lane);
+    if (i >= m.pointCount) {
+      setPoint(c.points[i], lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+      continue;
+    }
+    const ManifoldPoint& mp = m.points[i];
+    const double px = mp.point.x(), py = mp.point.y();
+    const double aAx = px - a.cx, aAy = py - a.cy, aBx = px - b.cx, aBy = py - b.cy;
+    normalArmA[i] = aAx * ny - aAy * nx;
+    normalArmB[i] = aBx * ny - aBy * nx;
+    const double tangentArmA = aAx * nx + aAy * ny, tangentArmB = aBx * nx + aBy * ny;
+    const double normalK = mass + a.invInertia * normalArmA[i] * normalArmA[i] +
+                           b.invInertia * normalArmB[i] * normalArmB[i];
+    const double tangentK = mass + a.invInertia * tangentArmA * tangentArmA +
+                            b.invInertia * tangentArmB * tangentArmB;
+    setPoint(c.points[i], lane, aAx, aAy, aBx, aBy,
+             mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
+             normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
+             contact.normalImpulse[i] / substeps, contact.tangentImpulse[i] / substeps);
+    // Normal speed of B relative to A at the point: v + w x r of each.
+    const double relativeX = (b.vx - b.w * aBy) - (a.vx - a.w * aAy);
+    const double relativeY = (b.vy + b.w * aBx) - (a.vy + a.w * aAx);
+    e.approach[i][lane] = relativeX * nx + relativeY * ny;
+  }
+  c.k11[lane] = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
+                b.invInertia * normalArmB[0] * normalArmB[0];
+  c.k12[lane] = c.k22[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
+  c.inverse11[lane] = c.points[0].normalMass[lane];
+  c.sequential[lane] = 0.0;
+  if (m.pointCount < 2) return;
+  c.k22[lane] = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
+                b.invInertia * normalArmB[1] * normalArmB[1];
+  c.k12[lane] = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
+                b.invInertia * normalArmB[0] * normalArmB[1];
+  if (wellConditioned(c.k11[lane], c.k12[lane], c.k22[lane])) {
+    const double det = c.k11[lane] * c.k22[lane] - c.k12[lane] * c.k12[lane];
+    c.inverse11[lane] = c.k22[lane] / det;
+    c.inverse12[lane] = -c.k12[lane] / det;
+    c.inverse22[lane] = c.k11[lane] / det;
+  } else {
+    c.inverse11[lane] = 0.0;
+    c.sequential[lane] = 1.0;
   }
 }
 
 }  // namespace
 
-void ContactBundles::build(std::vector<Contact>& contacts, const SubstepBodies& bodies) {
+void ContactBundles::assign(const std::vector<Contact>& contacts, const SubstepBodies& bodies) {
   ConstraintColoring coloring;
   coloring.reset(bodies.dynamicCount());
-  byColor_.resize(ConstraintColoring::kMaxColors + 1);  // the last: the overflow
-  for (std::vector<Contact*>& list : byColor_) list.clear();
-  contactCount_ = 0;
-  static std::vector<Contact*> order;
-  order.clear();
-  for (Contact& contact : contacts) order.push_back(&contact);
-  if (std::getenv("EXP_STRIDE") && order.size() > 2) {
-    const size_t n = order.size();
-    size_t stride = static_cast<size_t>(0.6180339887 * n) | 1;
-    while (std::gcd(stride, n) != 1) stride += 2;
-    std::vector<Contact*> permuted(n);
-    for (size_t i = 0, j = 0; i < n; ++i, j = (j + stride) % n) permuted[i] = order[j];
-    order.swap(permuted);
-  }
-  if (std::getenv("EXP_HASH")) {
-    auto mix = [](uint64_t x) { x ^= x >> 33; x *= 0xff51afd7ed558ccdull; x ^= x >> 33; x *= 0xc4ceb9fe1a85ec53ull; x ^= x >> 33; return x; };
-    std::sort(order.begin(), order.end(), [&](Contact* p, Contact* q) { return mix(p->key) < mix(q->key); });
-  }
-  for (Contact* cp : order) {
-    Contact& contact = *cp;
+  constexpr int kOverflow = ConstraintColoring::kMaxColors;  // its index in `count`
+  laneOf_.resize(contacts.size());
+  colorOf_.resize(contacts.size());
+  int count[kOverflow + 1] = {};
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& contact = contacts[i];
+    colorOf_[i] = -1;
     if (contact.manifold.pointCount == 0) continue;
     const int a = bodies.entryOf(contact.bodyA), b = bodies.entryOf(contact.bodyB);
     const int dynamicA = bodies.isDynamicEntry(a) ? a : -1;
     const int dynamicB = bodies.isDynamicEntry(b) ? b : -1;
     if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
-    static const bool allOverflow = std::getenv("EXP_OVERFLOW") != nullptr;
-    static const int spread = std::getenv("EXP_SPREAD") ? std::atoi(std::getenv("EXP_SPREAD")) : 0;
-    uint64_t x = contact.key; x ^= x >> 33; x *= 0xff51afd7ed558ccdull; x ^= x >> 33;
-    const int color = allOverflow ? -1 : coloring.assign(dynamicA, dynamicB, spread ? int(x % spread) : 0);
-    byColor_[color == ConstraintColoring::kOverflow ? ConstraintColoring::kMaxColors : color]
-        .push_back(&contact);
+    const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
+    colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflow : color;
+    ++count[colorOf_[i]];
+  }
+  // A colour of a few contacts costs the threads a stage for little work: its contacts join the
+  // overflow. Then each colour's bundles, and last the overflow's.
+  int bundleOf[kOverflow + 1];  // each colour's first bundle
+  int bundles = 0;
+  colorStart_.clear();
+  for (int color = 0; color <= kOverflow; ++color) {
+    if (color < kOverflow && count[color] < kMinColorSize) {
+      count[kOverflow] += count[color];
+      bundleOf[color] = -1;
+      continue;
+    }
+    colorStart_.push_back(bundles);
+    bundleOf[color] = bundles;
+    bundles += (count[color] + kBundleLanes - 1) / kBundleLanes;
+  }
+  bundles_.resize(static_cast<size_t>(bundles));
+  extras_.resize(static_cast<size_t>(bundles));
+  int rank[kOverflow + 1] = {};
+  contactCount_ = 0;
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    laneOf_[i] = -1;
+    if (colorOf_[i] < 0) continue;
+    const int color = bundleOf[colorOf_[i]] < 0 ? kOverflow : colorOf_[i];
+    const int r = rank[color]++;
+    laneOf_[i] = (bundleOf[color] + r / kBundleLanes) * kBundleLanes + r % kBundleLanes;
     ++contactCount_;
   }
-  if (std::getenv("EXP_SHUFFLE")) {
-    auto& o = byColor_[ConstraintColoring::kMaxColors];
-    uint64_t x = 88172645463325252ull;
-    for (size_t i = o.size(); i > 1; --i) { x ^= x << 13; x ^= x >> 7; x ^= x << 17; std::swap(o[i - 1], o[x % i]); }
-  }
-  if (std::getenv("EXP_REVERSE")) { auto& o = byColor_[ConstraintColoring::kMaxColors]; std::reverse(o.begin(), o.end()); }
-  if (std::getenv("EXP_CHECK")) {
-    for (int c = 0; c < ConstraintColoring::kMaxColors; ++c) {
-      std::vector<char> seen(bodies.dynamicCount(), 0);
-      for (Contact* k : byColor_[c]) {
-        for (int slot : {k->bodyA, k->bodyB}) {
-          int e = bodies.entryOf(slot);
-          if (!bodies.isDynamicEntry(e)) continue;
-          if (seen[e]) { fprintf(stderr, "colour %d shares entry %d\n", c, e); abort(); }
-          seen[e] = 1;
-        }
-      }
+  for (int color = 0; color <= kOverflow; ++color) {
+    for (int r = 0; bundleOf[color] >= 0 && r < count[color]; r += kBundleLanes) {
+      bundles_[bundleOf[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, count[color] - r);
     }
   }
-  bundles_.clear();
-  extras_.clear();
-  colorStart_.clear();
-  // First fit leaves no gaps: a colour is taken only when every lower one was.
-  for (int color = 0; color < ConstraintColoring::kMaxColors && !byColor_[color].empty(); ++color) {
-    colorStart_.push_back(static_cast<int>(bundles_.size()));
-    appendBundles(byColor_[color], bundles_, extras_);
-  }
-  colorStart_.push_back(static_cast<int>(bundles_.size()));
-  appendBundles(byColor_[ConstraintColoring::kMaxColors], bundles_, extras_);
-  if (std::getenv("EXP_STATS")) { static int n = 0; if (++n % 100 == 0) { for (auto& l : byColor_) fprintf(stderr, "%zu ", l.size()); fprintf(stderr, "\n"); } }
 }
 
-void ContactBundles::prepare(int begin, int end, const SubstepBodies& bodies,
-                             const std::vector<Body>& items, int substeps) {
+void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
+                          const SubstepBodies& bodies, const std::vector<Body>& items,
+                          int substeps) {
+  for (size_t i = first; i < last; ++i) {
+    if (laneOf_[i] < 0) continue;
+    const Contact& contact = contacts[i];
+    const int k = laneOf_[i] / kBundleLanes, lane = laneOf_[i] % kBundleLanes;
+    fillLane(bundles_[k], extras_[k], lane, contact, laneBody(bodies, items, contact.bodyA),
+             laneBody(bodies, items, contact.bodyB), substeps);
+  }
+}
+
+void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies) {
   const int64_t identityOffset = bodies.identityRow() * kStateDoubles;
   for (int k = begin; k < end; ++k) {
     ContactBundle& c = bundles_[k];
     BundleExtra& e = extras_[k];
+    for (int lane = c.laneCount; lane < kBundleLanes; ++lane) setEmptyLane(c, e, lane, identityOffset);
     c.anySequential = c.anyRestitution = false;
-    for (int lane = 0; lane < kBundleLanes; ++lane) {
-      const Contact* contact = e.contact[lane];
-      if (contact == nullptr) {
-        setEmptyLane(c, e, lane, identityOffset);
-        continue;
-      }
-      const Manifold& m = contact->manifold;
-      const LaneBody a = laneBody(bodies, items, contact->bodyA);
-      const LaneBody b = laneBody(bodies, items, contact->bodyB);
-      c.offsetA[lane] = a.offset;
-      c.offsetB[lane] = b.offset;
-      c.invMassA[lane] = a.invMass;
-      c.invInertiaA[lane] = a.invInertia;
-      c.invMassB[lane] = b.invMass;
-      c.invInertiaB[lane] = b.invInertia;
-      c.normalX[lane] = m.normal.x();
-      c.normalY[lane] = m.normal.y();
-      c.friction[lane] = contact->friction;
-      c.againstStatic[lane] = a.invMass > 0.0 && b.invMass > 0.0 ? 0.0 : 1.0;
-      e.restitution[lane] = contact->restitution;
-      c.anyRestitution |= contact->restitution > 0.0;
-      const Vec2 tangent = perp(m.normal);
-      double normalArmA[2] = {0.0, 0.0}, normalArmB[2] = {0.0, 0.0};
-      for (int i = 0; i < 2; ++i) {
-        e.maxNormalImpulse[i][lane] = 0.0;
-        e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
-        e.approach[i][lane] = 0.0;
-        if (i >= m.pointCount) {
-          setPoint(c.points[i], lane, Vec2::Zero(), Vec2::Zero(), 0, 0, 0, 0, 0);
-          continue;
-        }
-        const ManifoldPoint& mp = m.points[i];
-        const Vec2 anchorA = mp.point - a.center, anchorB = mp.point - b.center;
-        normalArmA[i] = cross(anchorA, m.normal);
-        normalArmB[i] = cross(anchorB, m.normal);
-        const double tangentArmA = cross(anchorA, tangent), tangentArmB = cross(anchorB, tangent);
-        const double k = a.invMass + b.invMass;
-        const double normalK = k + a.invInertia * normalArmA[i] * normalArmA[i] +
-                               b.invInertia * normalArmB[i] * normalArmB[i];
-        const double tangentK = k + a.invInertia * tangentArmA * tangentArmA +
-                                b.invInertia * tangentArmB * tangentArmB;
-        setPoint(c.points[i], lane, anchorA, anchorB,
-                 mp.separation - m.normal.dot(anchorB - anchorA),
-                 normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
-                 contact->normalImpulse[i] / substeps, contact->tangentImpulse[i] / substeps);
-        const Vec2 relative = b.velocity + cross(b.angularVelocity, anchorB) - a.velocity -
-                              cross(a.angularVelocity, anchorA);
-        e.approach[i][lane] = relative.dot(m.normal);
-      }
-      const double k = a.invMass + b.invMass;
-      c.k11[lane] = k + a.invInertia * normalArmA[0] * normalArmA[0] +
-                    b.invInertia * normalArmB[0] * normalArmB[0];
-      c.k12[lane] = c.k22[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
-      c.inverse11[lane] = c.points[0].normalMass[lane];
-      c.sequential[lane] = 0.0;
-      if (m.pointCount == 2) {
-        c.k22[lane] = k + a.invInertia * normalArmA[1] * normalArmA[1] +
-                      b.invInertia * normalArmB[1] * normalArmB[1];
-        c.k12[lane] = k + a.invInertia * normalArmA[0] * normalArmA[1] +
-                      b.invInertia * normalArmB[0] * normalArmB[1];
-        if (wellConditioned(c.k11[lane], c.k12[lane], c.k22[lane])) {
-          const double det = c.k11[lane] * c.k22[lane] - c.k12[lane] * c.k12[lane];
-          c.inverse11[lane] = c.k22[lane] / det;
-          c.inverse12[lane] = -c.k12[lane] / det;
-          c.inverse22[lane] = c.k11[lane] / det;
-        } else {
-          c.inverse11[lane] = 0.0;
-          c.sequential[lane] = 1.0;
-          c.anySequential = true;
-        }
-      }
+    for (int lane = 0; lane < c.laneCount; ++lane) {
+      c.anySequential |= c.sequential[lane] != 0.0;
+      c.anyRestitution |= e.restitution[lane] > 0.0;
     }
   }
 }
 
-void ContactBundles::store(int begin, int end) const {
-  for (int k = begin; k < end; ++k) {
-    const BundleExtra& e = extras_[k];
-    for (int lane = 0; lane < bundles_[k].laneCount; ++lane) {
-      Contact& contact = *e.contact[lane];
-      for (int i = 0; i < contact.manifold.pointCount; ++i) {
-        contact.normalImpulse[i] = e.totalNormalImpulse[i][lane];
-        contact.tangentImpulse[i] = e.totalTangentImpulse[i][lane];
-      }
+void ContactBundles::store(std::vector<Contact>& contacts, size_t first, size_t last) const {
+  for (size_t i = first; i < last; ++i) {
+    if (laneOf_[i] < 0) continue;
+    Contact& contact = contacts[i];
+    const BundleExtra& e = extras_[laneOf_[i] / kBundleLanes];
+    const int lane = laneOf_[i] % kBundleLanes;
+    for (int p = 0; p < contact.manifold.pointCount; ++p) {
+      contact.normalImpulse[p] = e.totalNormalImpulse[p][lane];
+      contact.tangentImpulse[p] = e.totalTangentImpulse[p][lane];
     }
   }
 }

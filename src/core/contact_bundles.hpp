@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "contact.hpp"
@@ -56,13 +57,12 @@ struct alignas(64) ContactBundle {
   double sequential[kBundleLanes];
   double againstStatic[kBundleLanes];  // 1 when one body cannot move (the soft step's spring)
   int laneCount;
-  bool anySequential;
+  bool anySequential;   // of the lanes, summed up by finishFill()
   bool anyRestitution;
 };
 
 struct alignas(64) BundleExtra {
   BundleExtra() {}  // as ContactBundle
-  Contact* contact[kBundleLanes];
   double restitution[kBundleLanes];
   double approach[2][kBundleLanes];  // m/s, the lowest normal speed before a solve (restitution)
   double maxNormalImpulse[2][kBundleLanes];
@@ -88,15 +88,18 @@ struct BundlePass {
 /// The colours' bundles of one step, built from the touching contacts of moving bodies.
 class ContactBundles {
  public:
-  /// Colours the constraints and assigns each contact its lane: colour by colour, then the
-  /// overflow, whose bundles are solved one lane after the other.
-  void build(std::vector<Contact>& contacts, const SubstepBodies& bodies);
-  /// Fills the bundles [begin, end) from their contacts at the step's start; impulses are the
-  /// arbiters' whole-step ones divided among `substeps`.
-  void prepare(int begin, int end, const SubstepBodies& bodies, const std::vector<Body>& items,
-               int substeps);
-  /// Writes the step's summed impulses of the bundles [begin, end) back into their contacts.
-  void store(int begin, int end) const;
+  /// Colours the contacts and gives each its lane, colour after colour, then the overflow,
+  /// whose bundles are solved one lane after the other. In the contacts' order, on one thread.
+  void assign(const std::vector<Contact>& contacts, const SubstepBodies& bodies);
+  /// Fills the lanes of the contacts [first, last) as the step begins, reading the contacts in
+  /// order; impulses are the arbiters' whole-step ones divided among `substeps`.
+  void fill(std::vector<Contact>& contacts, size_t first, size_t last, const SubstepBodies& bodies,
+            const std::vector<Body>& items, int substeps);
+  /// After fill(): the lanes no contact took, and each bundle's summary flags, of the bundles
+  /// [begin, end).
+  void finishFill(int begin, int end, const SubstepBodies& bodies);
+  /// Writes the step's summed impulses of the contacts [first, last) back into them.
+  void store(std::vector<Contact>& contacts, size_t first, size_t last) const;
 
   int colorCount() const { return static_cast<int>(colorStart_.size()) - 1; }
   int colorBegin(int color) const { return colorStart_[color]; }
@@ -117,7 +120,8 @@ class ContactBundles {
   std::vector<ContactBundle> bundles_;
   std::vector<BundleExtra> extras_;
   std::vector<int> colorStart_;  // bundles of colour c: [colorStart_[c], colorStart_[c + 1])
-  std::vector<std::vector<Contact*>> byColor_;  // scratch of build()
+  std::vector<int> laneOf_;      // by contact: bundle * kBundleLanes + lane, or -1: not solved
+  std::vector<int> colorOf_;     // by contact, scratch of assign()
   size_t contactCount_ = 0;
 };
 
@@ -133,5 +137,10 @@ void restituteBundles(const BundlePass& pass, int begin, int end, bool oneByOne)
 double solveBundlePositions(const BundlePass& pass, int begin, int end, bool oneByOne);
 /// The name of the instruction set the kernels run on ("AVX3", "AVX2", "SSE4", "EMU128").
 const char* contactKernelTarget();
+/// The instruction sets this processor can run the kernels on, best first.
+std::vector<std::string> contactKernelTargets();
+/// Runs the kernels on the named one of those (or, for "", the best again); false when it is
+/// not among them. Every one gives bit-identical results (contact_kernels.cpp).
+bool useContactKernelTarget(const std::string& name);
 
 }  // namespace impulse2d

@@ -13,6 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "body_lanes-inl.h"
 #include "contact_bundles.hpp"
@@ -22,19 +26,6 @@ namespace impulse2d {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-}  // namespace HWY_NAMESPACE
-}  // namespace impulse2d
-HWY_AFTER_NAMESPACE();
-#ifndef EXP_ONCE
-#define EXP_ONCE
-#include <cstdlib>
-static bool expNoShift() { static bool v = std::getenv("EXP_NOSHIFT") != nullptr; return v; }
-static bool expNormalFirst() { static bool v = std::getenv("EXP_NORMALFIRST") != nullptr; return v; }
-static bool expNarrow() { static bool v = std::getenv("EXP_NARROW") != nullptr; return v; }
-#endif
-HWY_BEFORE_NAMESPACE();
-namespace impulse2d {
-namespace HWY_NAMESPACE {
 // Below this turn a sub-step's rotation is a Taylor series (solver_body.hpp: rotationBy).
 constexpr double kSmallTurn = 0.02;
 
@@ -65,7 +56,6 @@ HWY_INLINE Frame<D> frame(D d, const ContactBundle& c, size_t lane, const Bodies
   const V<D> half = hn::Set(d, 0.5);
   f.halfMoveN = hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ny), hn::Mul(f.moveY, f.nx)));
   f.halfMoveT = hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ty), hn::Mul(f.moveY, f.tx)));
-  if (expNoShift()) { f.halfMoveN = hn::Zero(d); f.halfMoveT = hn::Zero(d); }
   return f;
 }
 
@@ -301,13 +291,8 @@ HWY_INLINE void solveGroup(D d, const BundlePass& pass, ContactBundle& c, Bundle
   const V<D> s[2] = {separation(d, c.points[0], lane, f, a, b),
                      separation(d, c.points[1], lane, f, a, b)};
   // Friction first: non-penetration matters more, so the normal impulses get the last word.
-  if (expNormalFirst()) {
-    solveNormals(d, pass, c, extra, lane, f, r, s, &a, &b);
-    solveFriction(d, c, extra, lane, pass.relax, f, r, &a, &b);
-  } else {
   solveFriction(d, c, extra, lane, pass.relax, f, r, &a, &b);
   solveNormals(d, pass, c, extra, lane, f, r, s, &a, &b);
-  }
   storeVelocities(d, pass.states, c.offsetA + lane, pass.sinkOffset, a);
   storeVelocities(d, pass.states, c.offsetB + lane, pass.sinkOffset, b);
 }
@@ -480,7 +465,7 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
 template <class Group>
 HWY_INLINE void forEachGroup(const BundlePass& pass, int begin, int end, bool oneByOne,
                              const Group& group) {
-  if (oneByOne || expNarrow()) {
+  if (oneByOne) {
     const hn::CappedTag<double, 1> d1;
     for (int k = begin; k < end; ++k) {
       for (int lane = 0; lane < pass.bundles[k].laneCount; ++lane) group(d1, k, size_t(lane));
@@ -550,6 +535,50 @@ double solveBundlePositions(const BundlePass& pass, int begin, int end, bool one
   return HWY_DYNAMIC_DISPATCH(SolveBundlePositions)(pass, begin, end, oneByOne);
 }
 const char* contactKernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTarget)(); }
+
+namespace {
+
+// Every target this build has and this processor runs, best first; read once, before any
+// useContactKernelTarget() narrows what Highway reports.
+const std::vector<int64_t>& availableTargets() {
+  static const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  return targets;
+}
+
+}  // namespace
+
+std::vector<std::string> contactKernelTargets() {
+  std::vector<std::string> names;
+  for (const int64_t target : availableTargets()) names.emplace_back(hwy::TargetName(target));
+  return names;
+}
+
+bool useContactKernelTarget(const std::string& name) {
+  for (const int64_t target : availableTargets()) {
+    if (!name.empty() && name != hwy::TargetName(target)) continue;
+    hwy::SetSupportedTargetsForTest(name.empty() ? 0 : target);  // 0: every target again
+    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+    return true;
+  }
+  return false;
+}
+
+namespace {
+
+// IMPULSE2D_SIMD=AVX2 (or any name contactKernelTargets() lists) runs the kernels on that
+// instruction set from the start: to compare them, or to keep a processor out of AVX-512.
+const bool kChosenFromEnvironment = [] {
+  const char* name = std::getenv("IMPULSE2D_SIMD");
+  if (name == nullptr || *name == '\0') return false;
+  if (useContactKernelTarget(name)) return true;
+  std::string known;
+  for (const std::string& target : contactKernelTargets()) known += " " + target;
+  std::fprintf(stderr, "impulse2d: IMPULSE2D_SIMD=%s is not one of:%s; using %s\n", name,
+               known.c_str(), contactKernelTarget());
+  return false;
+}();
+
+}  // namespace
 
 }  // namespace impulse2d
 #endif  // HWY_ONCE

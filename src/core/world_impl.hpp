@@ -24,6 +24,8 @@ namespace impulse2d {
 /// Fat boxes are this much larger than their shapes, so a body that moves a little does not touch
 /// the tree at all.
 constexpr double kAabbMargin = 0.1;
+/// Parallel stages take contacts in blocks of this many.
+constexpr int kContactsPerBlock = 256;
 
 /// Slot storage: stable indices, a generation per slot to reject stale handles, and a free list
 /// so that create/destroy churn reuses memory instead of growing.
@@ -100,7 +102,8 @@ struct WorldImpl {
   SubstepBodies substepBodies;
   ContactBundles contactBundles;
   StepWorkers stepWorkers;
-  std::vector<double> blockDeepest;  // the NGS pass's deepest separation, by block
+  std::vector<double> blockDeepest;    // the NGS pass's deepest separation, by block
+  std::vector<uint8_t> contactFates;   // the narrow phase's verdict, by contact
   // Reused buffers of the island pass (island_sleep.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
     int slot;

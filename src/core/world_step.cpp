@@ -10,24 +10,26 @@ namespace impulse2d {
 void World::step() {
   WorldImpl& w = *impl_;
   const double dt = w.def.timeStep;
-  w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
-  w.findNewContacts();   // 2. newly overlapping pairs become arbiters
-  w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
   w.stepWorkers.setThreads(w.def.threads);
-  if (usesSubsteps(w.def.solver)) {
-    w.solveSubsteps(dt);  // 4-6 in sub-steps, and 8 (world_substeps.cpp)
-  } else {
-    w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
-    w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
-    w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
-    w.integratePositions(dt);   // 6. move with the solved velocities
-    w.solverBodies.storeMotion(w.bodies.items);
-  }
-  w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
-  w.correctPositions();   // 8. ngs: push remaining overlaps apart
-  w.updateSleep(dt);      // 9. islands still for long enough fall asleep
-  removeEscapedBodies();  // 10. bodies that left the world extent are removed, not computed
-  w.clearForces();
+  w.stepWorkers.session([&] {  // the step's threads, for each stage that has parallel blocks
+    w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
+    w.findNewContacts();   // 2. newly overlapping pairs become arbiters
+    w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
+    if (usesSubsteps(w.def.solver)) {
+      w.solveSubsteps(dt);  // 4-6 in sub-steps, and 8 (world_substeps.cpp)
+    } else {
+      w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
+      w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
+      w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
+      w.integratePositions(dt);   // 6. move with the solved velocities
+      w.solverBodies.storeMotion(w.bodies.items);
+    }
+    w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
+    w.correctPositions();   // 8. ngs: push remaining overlaps apart
+    w.updateSleep(dt);      // 9. islands still for long enough fall asleep
+    removeEscapedBodies();  // 10. bodies that left the world extent are removed, not computed
+    w.clearForces();
+  });
   w.time += dt;
   ++w.steps;
 }
@@ -90,30 +92,48 @@ void WorldImpl::findNewContacts() {
 }
 
 void WorldImpl::updateContacts() {
+  // In parallel: each contact's new manifold, or its mark to go (its fat boxes parted). Which
+  // bodies move is read as the step found them, so the result does not depend on the order.
+  enum : uint8_t { kKeep = 0, kDrop = 1, kWakeA = 2, kWakeB = 4 };
+  std::vector<uint8_t>& contactFate = contactFates;
+  contactFate.resize(contacts.size());
+  const int blocks = static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
+  stepWorkers.stage(blocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
+    for (size_t i = first; i < last; ++i) {
+      Contact& contact = contacts[i];
+      const Body& a = bodies.items[contact.bodyA];
+      const Body& b = bodies.items[contact.bodyB];
+      const int proxyA = a.proxies[contact.shapeA], proxyB = b.proxies[contact.shapeB];
+      uint8_t fate = kKeep;
+      if (!tree.fatAabb(proxyA).overlaps(tree.fatAabb(proxyB))) {
+        fate = kDrop;
+      } else if (isMoving(a) || isMoving(b)) {
+        // Two bodies that cannot move relative to each other keep last step's manifold.
+        updateContact(contact, a, b, speculativeMargin(a, b), def.warmStarting);
+        // Something moving now touches a sleeper: it wakes before the solver runs.
+        if (contact.manifold.pointCount > 0) {
+          if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) fate |= kWakeB;
+          if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake) fate |= kWakeA;
+        }
+      }
+      contactFate[i] = fate;
+    }
+  });
+  // In order: drop what went, wake what was touched.
   size_t write = 0;
   for (size_t read = 0; read < contacts.size(); ++read) {
-    Contact& contact = contacts[read];
-    const Body& a = bodies.items[contact.bodyA];
-    const Body& b = bodies.items[contact.bodyB];
-    const int proxyA = a.proxies[contact.shapeA], proxyB = b.proxies[contact.shapeB];
-    if (!tree.fatAabb(proxyA).overlaps(tree.fatAabb(proxyB))) {
-      contactByKey.erase(contact.key);
+    const uint8_t fate = contactFate[read];
+    if (fate & kDrop) {
+      contactByKey.erase(contacts[read].key);
       continue;
     }
-    // Two bodies that cannot move relative to each other keep last step's manifold.
-    if (isMoving(a) || isMoving(b)) {
-      updateContact(contact, a, b, speculativeMargin(a, b), def.warmStarting);
-      // Something moving now touches a sleeper: wake it before the solver runs.
-      if (contact.manifold.pointCount > 0) {
-        if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake)
-          wakeBody(bodies.items[contact.bodyB]);
-        if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake)
-          wakeBody(bodies.items[contact.bodyA]);
-      }
-    }
+    if (fate & kWakeA) wakeBody(bodies.items[contacts[read].bodyA]);
+    if (fate & kWakeB) wakeBody(bodies.items[contacts[read].bodyB]);
     // The map already holds every kept contact's index; only those that slid down need a write.
     if (write != read) {
-      contacts[write] = contact;
+      contacts[write] = contacts[read];
       contactByKey[contacts[write].key] = static_cast<int>(write);
     }
     ++write;

@@ -21,7 +21,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 namespace impulse2d {
 namespace {
@@ -60,7 +59,7 @@ void WorldImpl::solveSubsteps(double dt) {
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
   sb.gather(bodies.items, bodies.alive, def.gravity, h, stepWorkers.threads());
-  contactBundles.build(contacts, sb);
+  contactBundles.assign(contacts, sb);
 
   activeJoints.clear();
   for (size_t j = 0; j < joints.items.size(); ++j) {
@@ -96,10 +95,7 @@ void WorldImpl::solveSubsteps(double dt) {
 
   // A kernel over every colour, a colour at a time, then the overflow lane by lane.
   auto overColors = [&](auto kernel) {
-    static const bool rev = std::getenv("EXP_REVCOLORS") != nullptr;
-    const bool backwards = rev && pass.relax;
-    for (int k = 0; k < contactBundles.colorCount(); ++k) {
-      const int color = backwards ? contactBundles.colorCount() - 1 - k : k;
+    for (int color = 0; color < contactBundles.colorCount(); ++color) {
       const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
       stepWorkers.stage(blocksOf(end - first, kBundlesPerBlock), [&](int block, int worker) {
         BundlePass mine = pass;
@@ -113,13 +109,19 @@ void WorldImpl::solveSubsteps(double dt) {
     kernel(mine, contactBundles.overflowBegin(), contactBundles.bundleCount(), true);
   };
 
-  stepWorkers.session([&] {
-    stepWorkers.stage(blocksOf(contactBundles.bundleCount(), kBundlesPerBlock),
+  {
+    const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
+    stepWorkers.stage(contactBlocks, [&](int block, int) {
+      const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+      contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
+                          bodies.items, substeps);
+    });
+    stepWorkers.stage(blocksOf(contactBundles.bundleCount(), kBundlesPerBlock * 8),
                       [&](int block, int) {
-                        const int begin = block * kBundlesPerBlock;
-                        contactBundles.prepare(
-                            begin, std::min(contactBundles.bundleCount(), begin + kBundlesPerBlock),
-                            sb, bodies.items, substeps);
+                        const int begin = block * kBundlesPerBlock * 8;
+                        contactBundles.finishFill(
+                            begin, std::min(contactBundles.bundleCount(), begin + kBundlesPerBlock * 8),
+                            sb);
                       });
     for (int substep = 0; substep < substeps; ++substep) {
       stepWorkers.stage(dynamicBlocks, [&](int block, int) {
@@ -153,14 +155,12 @@ void WorldImpl::solveSubsteps(double dt) {
     }
     pass.relax = false;
     overColors(restituteBundles);
-    stepWorkers.stage(blocksOf(contactBundles.bundleCount(), kBundlesPerBlock),
-                      [&](int block, int) {
-                        const int begin = block * kBundlesPerBlock;
-                        contactBundles.store(
-                            begin, std::min(contactBundles.bundleCount(), begin + kBundlesPerBlock));
-                      });
-    if (def.solver == SolverType::SubstepNgs || std::getenv("EXP_SOFTNGS")) correctSubstepPositions(pass);
-  });
+    stepWorkers.stage(contactBlocks, [&](int block, int) {
+      const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+      contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
+    });
+    if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
+  }
   sb.finish(bodies.items);
 
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.

@@ -15,6 +15,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
                   "plane",
                   "frame_id",
                   "solver",
+                  "threads",
                   "baumgarte",
                   "linear_slop",
                   "speculative_distance",
@@ -37,9 +38,11 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   if (f.has("solver")) {
     const std::string solver = f.string("solver", "");
     if (!solverFromName(solver, &w.solver)) {
-      throw SceneError("solver", "must be baumgarte, ngs or soft, not " + quoted(solver));
+      throw SceneError("solver",
+                       "must be baumgarte, ngs, soft or substep, not " + quoted(solver));
     }
   }
+  w.threads = f.integer("threads", w.threads);
   w.baumgarte = f.number("baumgarte", w.baumgarte);
   w.linearSlop = f.number("linear_slop", w.linearSlop);
   w.speculativeDistance = f.number("speculative_distance", w.speculativeDistance);

@@ -17,9 +17,8 @@ namespace sim {
 const char* const kUsage =
     "usage: impulse2d_sim SCENE.yaml [--steps N | --duration SECONDS] [--time-step DT]\n"
     "                     [--velocity-iterations K] [--position-iterations K]\n"
-    "                     [--solver baumgarte|ngs|soft] [--csv FILE] [--contacts FILE] [--every "
-    "K]\n"
-    "                     [--hash]\n"
+    "                     [--solver baumgarte|ngs|soft|substep] [--threads N] [--csv FILE]\n"
+    "                     [--contacts FILE] [--every K] [--hash]\n"
     "\n"
     "Runs a scene file (the YAML schema of the impulse2d README) headless, without ROS.\n"
     "\n"
@@ -28,7 +27,8 @@ const char* const kUsage =
     "  --time-step DT           override world.time_step (s, > 0)\n"
     "  --velocity-iterations K  override world.velocity_iterations (1 to 1000)\n"
     "  --position-iterations K  override world.position_iterations (0 to 1000)\n"
-    "  --solver baumgarte|ngs|soft  override world.solver\n"
+    "  --solver baumgarte|ngs|soft|substep  override world.solver\n"
+    "  --threads N              override world.threads (1 to 256; the same result for any N)\n"
     "  --csv FILE               write step,time,body,x,y,angle,vx,vy,omega: one row per\n"
     "                           dynamic or kinematic body per written step; step 0 is the\n"
     "                           initial state\n"
@@ -120,9 +120,13 @@ const std::map<std::string, Setter>& setters() {
        }},
       {"--solver",
        [](const std::string& v, Options* o) -> std::string {
-         if (!solverFromName(v, &o->solver)) return "must be baumgarte, ngs or soft";
+         if (!solverFromName(v, &o->solver)) return "must be baumgarte, ngs, soft or substep";
          o->solverGiven = true;
          return "";
+       }},
+      {"--threads",
+       [](const std::string& v, Options* o) {
+         return setIterations(v, &o->threads, &o->threadsGiven, &WorldDef::threads);
        }},
       {"--csv",
        [](const std::string& v, Options* o) -> std::string {
@@ -217,6 +221,7 @@ WorldDef applyOverrides(const Options& options, WorldDef settings) {
   if (options.velocityIterationsGiven) settings.velocityIterations = options.velocityIterations;
   if (options.positionIterationsGiven) settings.positionIterations = options.positionIterations;
   if (options.solverGiven) settings.solver = options.solver;
+  if (options.threadsGiven) settings.threads = options.threads;
   return settings;
 }
 
