@@ -4,6 +4,7 @@
 #include <oneapi/tbb/task_group.h>
 
 #include <atomic>
+#include <cstdint>
 #include <deque>
 #include <thread>
 
@@ -29,21 +30,33 @@ void backOff(int& spins) {
 }  // namespace
 
 struct StepWorkers::Shared {
-  struct Stage {
+  // A stage's blocks are cut into one run per worker: a worker claims the blocks of its own run
+  // first, so that in every pass over the same data (the colours of each sub-step) each thread
+  // takes the same part and finds it in its own cache; then it helps with the others' runs.
+  struct alignas(64) Run {
     std::atomic<int> next{0};  // the next block to claim
-    std::atomic<int> done{0};
+    int end = 0;
+  };
+  struct Stage {
+    explicit Stage(int runs) : runs(static_cast<size_t>(runs)) {}
+    std::deque<Run> runs;
+    alignas(64) std::atomic<int> done{0};
     int blocks = 0;
     const Block* fn = nullptr;
   };
 
-  explicit Shared(int threads) : arena(threads) {}
+  explicit Shared(int threads) : threads(threads), arena(threads) {}
 
-  // Claims and runs blocks of `stage` until none is left.
+  // Claims and runs blocks of `stage`, its own run first, until none is left.
   static void work(Stage& stage, int worker) {
-    for (int block = stage.next.fetch_add(1, std::memory_order_relaxed); block < stage.blocks;
-         block = stage.next.fetch_add(1, std::memory_order_relaxed)) {
-      (*stage.fn)(block, worker);
-      stage.done.fetch_add(1, std::memory_order_release);
+    const size_t runs = stage.runs.size();
+    for (size_t k = 0; k < runs; ++k) {
+      Run& run = stage.runs[(static_cast<size_t>(worker) + k) % runs];
+      for (int block = run.next.fetch_add(1, std::memory_order_relaxed); block < run.end;
+           block = run.next.fetch_add(1, std::memory_order_relaxed)) {
+        (*stage.fn)(block, worker);
+        stage.done.fetch_add(1, std::memory_order_release);
+      }
     }
   }
 
@@ -63,6 +76,7 @@ struct StepWorkers::Shared {
     }
   }
 
+  int threads;
   tbb::task_arena arena;
   // This session's stages, by number: a deque keeps them in place as it grows, so a helper that
   // still holds a finished stage only finds no block left in it.
@@ -108,9 +122,14 @@ void StepWorkers::stage(int blocks, const Block& fn) {
     for (int block = 0; block < blocks; ++block) fn(block, 0);
     return;
   }
-  Shared::Stage& stage = shared_->stages.emplace_back();
+  Shared::Stage& stage = shared_->stages.emplace_back(threads_);
   stage.blocks = blocks;
   stage.fn = &fn;
+  for (int r = 0; r < threads_; ++r) {  // run r: blocks [r blocks / threads, (r + 1) ...)
+    stage.runs[r].next.store(static_cast<int>(int64_t(r) * blocks / threads_),
+                             std::memory_order_relaxed);
+    stage.runs[r].end = static_cast<int>(int64_t(r + 1) * blocks / threads_);
+  }
   shared_->current.store(&stage, std::memory_order_release);
   Shared::work(stage, 0);
   int spins = 0;

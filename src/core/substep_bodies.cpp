@@ -1,56 +1,91 @@
 #include "substep_bodies.hpp"
 
+#include <algorithm>
+
 namespace impulse2d {
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
-                           const Vec2& gravity, double h, int workers) {
+                           const Vec2& gravity, double h, StepWorkers& workers) {
   bodies_ = &bodies;
-  states_.clear();
-  sims_.clear();
-  entryOfSlot_.assign(bodies.size(), -1);
-  for (const BodyType type : {BodyType::Dynamic, BodyType::Kinematic}) {
-    for (size_t i = 0; i < bodies.size(); ++i) {
-      const Body& body = bodies[i];
-      if (!alive[i] || body.type != type || !body.awake) continue;
-      entryOfSlot_[i] = static_cast<int>(states_.size());
-      BodyState& state = states_.emplace_back();
-      state.vx = body.linearVelocity.x();
-      state.vy = body.linearVelocity.y();
-      state.w = body.angularVelocity;
-      BodySim& sim = sims_.emplace_back();
-      sim.slot = static_cast<int>(i);
-      sim.center0 = body.center;
-      sim.angle0 = body.angle;
-      sim.q0 = body.xf.q;
-      sim.localCenter = body.localCenter;
-      if (type == BodyType::Dynamic) {
-        sim.invMass = body.invMass;
-        sim.invInertia = body.invInertia;
-        sim.dvx = h * (gravity.x() + body.invMass * body.force.x());
-        sim.dvy = h * (gravity.y() + body.invMass * body.force.y());
-        sim.dw = h * body.invInertia * body.torque;
-        // Implicit damping: stable for any coefficient and sub-step.
-        if (body.linearDamping > 0.0) sim.linearDamping = 1.0 / (1.0 + h * body.linearDamping);
-        if (body.angularDamping > 0.0) sim.angularDamping = 1.0 / (1.0 + h * body.angularDamping);
-      } else {
-        sim.kinematicVelocity = body.linearVelocity;
-        sim.kinematicAngularVelocity = body.angularVelocity;
-      }
+  const int slots = static_cast<int>(bodies.size());
+  const int blocks = (slots + kSlotsPerBlock - 1) / kSlotsPerBlock;
+  auto rowOf = [&](int i) {  // 0: none, 1: a dynamic row, 2: a kinematic one
+    const Body& body = bodies[i];
+    if (!alive[i] || !body.awake || body.type == BodyType::Static) return 0;
+    return body.type == BodyType::Dynamic ? 1 : 2;
+  };
+  // Count each block's rows, so that every block knows where its own go: dynamic rows first,
+  // then kinematic ones, each in slot order, as if one thread had gone through the slots.
+  blockFirst_.assign(2 * static_cast<size_t>(blocks) + 2, 0);
+  workers.stage(blocks, [&](int block, int) {
+    for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
+      const int kind = rowOf(i);
+      if (kind != 0) ++blockFirst_[2 * (block + 1) + (kind - 1)];
     }
-    if (type == BodyType::Dynamic) dynamicCount_ = static_cast<int>(states_.size());
+  });
+  for (int block = 1; block <= blocks; ++block) {
+    blockFirst_[2 * block] += blockFirst_[2 * (block - 1)];
+    blockFirst_[2 * block + 1] += blockFirst_[2 * (block - 1) + 1];
   }
-  movingCount_ = static_cast<int>(states_.size());
-  states_.resize(states_.size() + 1 + static_cast<size_t>(workers));  // identity and sinks
+  dynamicCount_ = blockFirst_[2 * blocks];
+  movingCount_ = dynamicCount_ + blockFirst_[2 * blocks + 1];
+  states_.resize(static_cast<size_t>(movingCount_) + 1 + static_cast<size_t>(workers.threads()));
+  sims_.resize(static_cast<size_t>(movingCount_));
+  starts_.resize(static_cast<size_t>(movingCount_));
+  loads_.resize(static_cast<size_t>(dynamicCount_));
+  entryOfSlot_.resize(bodies.size());
+  workers.stage(blocks, [&](int block, int) {
+    int next[2] = {blockFirst_[2 * block], dynamicCount_ + blockFirst_[2 * block + 1]};
+    for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
+      const int kind = rowOf(i);
+      entryOfSlot_[i] = kind == 0 ? -1 : next[kind - 1]++;
+      if (kind != 0) add(bodies[i], i, entryOfSlot_[i], gravity, h);
+    }
+  });
+  // The identity row and the sinks.
+  std::fill(states_.begin() + movingCount_, states_.end(), BodyState());
+}
+
+void SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravity, double h) {
+  BodyState& state = states_[entry];
+  state = BodyState();
+  state.vx = body.linearVelocity.x();
+  state.vy = body.linearVelocity.y();
+  state.w = body.angularVelocity;
+  BodySim& sim = sims_[entry];
+  sim = BodySim();
+  sim.center0 = body.center;
+  BodyStart& start = starts_[entry];
+  start = BodyStart();
+  start.slot = slot;
+  start.angle0 = body.angle;
+  start.q0 = body.xf.q;
+  start.localCenter = body.localCenter;
+  if (body.type == BodyType::Dynamic) {
+    sim.invMass = body.invMass;
+    sim.invInertia = body.invInertia;
+    BodyLoad& load = loads_[entry];
+    load = BodyLoad();
+    load.dvx = h * (gravity.x() + body.invMass * body.force.x());
+    load.dvy = h * (gravity.y() + body.invMass * body.force.y());
+    load.dw = h * body.invInertia * body.torque;
+    // Implicit damping: stable for any coefficient and sub-step.
+    if (body.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * body.linearDamping);
+    if (body.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * body.angularDamping);
+  } else {
+    start.kinematicVelocity = body.linearVelocity;
+    start.kinematicAngularVelocity = body.angularVelocity;
+  }
 }
 
 void SubstepBodies::integrateVelocities(int begin, int end) {
   const int last = std::min(end, dynamicCount_);
   for (int e = begin; e < last; ++e) {
     BodyState& s = states_[e];
-    const BodySim& sim = sims_[e];
-    s.vx = (s.vx + sim.dvx) * sim.linearDamping;
-    s.vy = (s.vy + sim.dvy) * sim.linearDamping;
-    s.w = (s.w + sim.dw) * sim.angularDamping;
+    const BodyLoad& load = loads_[e];
+    s.vx = (s.vx + load.dvx) * load.linearDamping;
+    s.vy = (s.vy + load.dvy) * load.linearDamping;
+    s.w = (s.w + load.dw) * load.angularDamping;
   }
 }
 
@@ -58,10 +93,10 @@ void SubstepBodies::integratePositions(int begin, int end, double h) {
   for (int e = begin; e < end; ++e) {
     BodyState& s = states_[e];
     if (e >= dynamicCount_) {  // impulses cannot change a kinematic velocity, nor may a NaN
-      const BodySim& sim = sims_[e];
-      s.vx = sim.kinematicVelocity.x();
-      s.vy = sim.kinematicVelocity.y();
-      s.w = sim.kinematicAngularVelocity;
+      const BodyStart& start = starts_[e];
+      s.vx = start.kinematicVelocity.x();
+      s.vy = start.kinematicVelocity.y();
+      s.w = start.kinematicAngularVelocity;
     }
     s.dx += h * s.vx;
     s.dy += h * s.vy;
@@ -83,15 +118,16 @@ SolverBody SubstepBodies::view(int slot) const {
   }
   const BodyState& s = states_[entry];
   const BodySim& sim = sims_[entry];
+  const BodyStart& start = starts_[entry];
   SolverBody e;
   e.linearVelocity = Vec2(s.vx, s.vy);
   e.angularVelocity = s.w;
   e.invMass = sim.invMass;
   e.invInertia = sim.invInertia;
   e.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
-  e.angle = sim.angle0 + s.turned;
-  e.q = sim.q0 * Rot::fromCosSin(s.qc, s.qs);
-  e.localCenter = sim.localCenter;
+  e.angle = start.angle0 + s.turned;
+  e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
+  e.localCenter = start.localCenter;
   return e;
 }
 
@@ -104,21 +140,23 @@ void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
   s.w = view.angularVelocity;
   if (!pose) return;
   const BodySim& sim = sims_[entry];
+  const BodyStart& start = starts_[entry];
   s.dx = view.center.x() - sim.center0.x();
   s.dy = view.center.y() - sim.center0.y();
-  s.turned = view.angle - sim.angle0;
-  const Rot q = sim.q0.inverseTimes(view.q);
+  s.turned = view.angle - start.angle0;
+  const Rot q = start.q0.inverseTimes(view.q);
   s.qc = q.c;
   s.qs = q.s;
 }
 
-void SubstepBodies::finish(std::vector<Body>& bodies) const {
-  for (int e = 0; e < movingCount_; ++e) {
+void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const {
+  for (int e = begin; e < std::min(end, movingCount_); ++e) {
     const BodyState& s = states_[e];
     const BodySim& sim = sims_[e];
-    Body& body = bodies[sim.slot];
+    const BodyStart& start = starts_[e];
+    Body& body = bodies[start.slot];
     body.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
-    body.angle = sim.angle0 + s.turned;
+    body.angle = start.angle0 + s.turned;
     body.xf.q = Rot(body.angle);
     body.xf.p = body.center - body.xf.q.apply(body.localCenter);
     if (e < dynamicCount_) {

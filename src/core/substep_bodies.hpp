@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "solver_body.hpp"
+#include "step_workers.hpp"
 
 namespace impulse2d {
 
@@ -33,18 +34,25 @@ static_assert(sizeof(BodyState) == 64, "one cache line per body");
 /// Field offsets of BodyState in doubles, for gathers.
 enum BodyStateField : int64_t { kVx = 0, kVy, kW, kTurned, kDx, kDy, kQc, kQs, kStateDoubles };
 
-/// What the step needs of a moving body besides its state: where it began, and what integrating
-/// its velocity adds each sub-step (constant over the step).
+/// What contacts read of a moving body as the step begins (fill: 32 bytes a body).
 struct BodySim {
-  int slot = -1;
   Vec2 center0 = Vec2::Zero();  // centre of mass when the step began
+  double invMass = 0.0, invInertia = 0.0;
+};
+
+/// What integrating a dynamic body's velocity adds each sub-step (constant over the step):
+///   v = (v + dv) * damping.
+struct BodyLoad {
+  double dvx = 0.0, dvy = 0.0, dw = 0.0;
+  double linearDamping = 1.0, angularDamping = 1.0;  // factors per sub-step
+};
+
+/// The rest, read once or twice a step: where the body began, and a kinematic body's velocity.
+struct BodyStart {
+  int slot = -1;
   double angle0 = 0.0;
   Rot q0;
   Vec2 localCenter = Vec2::Zero();
-  double invMass = 0.0, invInertia = 0.0;
-  // Dynamic: each sub-step v = (v + dv) * damping. Kinematic: the prescribed velocity.
-  double dvx = 0.0, dvy = 0.0, dw = 0.0;
-  double linearDamping = 1.0, angularDamping = 1.0;  // factors per sub-step
   Vec2 kinematicVelocity = Vec2::Zero();
   double kinematicAngularVelocity = 0.0;
 };
@@ -54,7 +62,7 @@ class SubstepBodies {
   /// Starts a step of sub-steps of h: a row for every living, awake, non-static body (dynamic
   /// first, in slot order), then the identity row and `workers` sinks.
   void gather(const std::vector<Body>& bodies, const std::vector<char>& alive, const Vec2& gravity,
-              double h, int workers);
+              double h, StepWorkers& workers);
 
   /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).
   int64_t readRow(int slot) const {
@@ -78,6 +86,7 @@ class SubstepBodies {
   const BodyState* states() const { return states_.data(); }
   BodyState& state(int entry) { return states_[entry]; }
   const BodySim& sim(int entry) const { return sims_[entry]; }
+  const BodyStart& start(int entry) const { return starts_[entry]; }
 
   /// Gravity, forces and damping over one sub-step, for the entries [begin, end).
   void integrateVelocities(int begin, int end);
@@ -92,14 +101,21 @@ class SubstepBodies {
   /// `pose` (position passes).
   void store(int slot, const SolverBody& view, bool pose);
 
-  /// Writes the moved poses and (dynamic) velocities back to the bodies.
-  void finish(std::vector<Body>& bodies) const;
+  /// Writes the moved poses and (dynamic) velocities of the entries [begin, end) back to the
+  /// bodies.
+  void finish(std::vector<Body>& bodies, int begin, int end) const;
 
  private:
+  static constexpr int kSlotsPerBlock = 1024;
+  void add(const Body& body, int slot, int entry, const Vec2& gravity, double h);
+
   const std::vector<Body>* bodies_ = nullptr;
   std::vector<BodyState> states_;
   std::vector<BodySim> sims_;
+  std::vector<BodyLoad> loads_;  // dynamic entries only
+  std::vector<BodyStart> starts_;
   std::vector<int> entryOfSlot_;  // -1 when the body has no row
+  std::vector<int> blockFirst_;   // gather(): each block's first dynamic and kinematic row
   int dynamicCount_ = 0, movingCount_ = 0;
 };
 

@@ -24,8 +24,9 @@ namespace impulse2d {
 /// Fat boxes are this much larger than their shapes, so a body that moves a little does not touch
 /// the tree at all.
 constexpr double kAabbMargin = 0.1;
-/// Parallel stages take contacts in blocks of this many.
+/// Parallel stages take contacts, and bodies, in blocks of this many.
 constexpr int kContactsPerBlock = 256;
+constexpr int kBodiesPerBlock = 256;
 
 /// Slot storage: stable indices, a generation per slot to reject stale handles, and a free list
 /// so that create/destroy churn reuses memory instead of growing.
@@ -104,6 +105,7 @@ struct WorldImpl {
   StepWorkers stepWorkers;
   std::vector<double> blockDeepest;    // the NGS pass's deepest separation, by block
   std::vector<uint8_t> contactFates;   // the narrow phase's verdict, by contact
+  std::vector<std::vector<std::pair<int, Aabb>>> refits;  // proxies that left their fat boxes
   // Reused buffers of the island pass (island_sleep.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
     int slot;

@@ -35,10 +35,28 @@ void World::step() {
 }
 
 void WorldImpl::updateBroadPhase() {
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    Body& body = bodies.items[i];
-    if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
-    updateProxies(body, false);
+  // In parallel: the shapes of moving bodies that left their fat boxes (most move less than the
+  // margin and need nothing). Then in slot order, one thread: the tree moves them.
+  const int slots = static_cast<int>(bodies.items.size());
+  const int blocks = (slots + kBodiesPerBlock - 1) / kBodiesPerBlock;
+  refits.resize(static_cast<size_t>(blocks));
+  stepWorkers.stage(blocks, [&](int block, int) {
+    std::vector<std::pair<int, Aabb>>& out = refits[block];
+    out.clear();
+    for (int i = block * kBodiesPerBlock; i < std::min(slots, (block + 1) * kBodiesPerBlock); ++i) {
+      const Body& body = bodies.items[i];
+      if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+      for (size_t k = 0; k < body.shapes.size(); ++k) {
+        const Aabb box = computeAabb(body.shapes[k], body.xf);
+        if (!tree.fatAabb(body.proxies[k]).contains(box)) out.emplace_back(body.proxies[k], box);
+      }
+    }
+  });
+  for (const std::vector<std::pair<int, Aabb>>& block : refits) {
+    for (const auto& [proxy, box] : block) {
+      tree.moveProxy(proxy, box.inflated(kAabbMargin));
+      markMoved(proxy);
+    }
   }
 }
 

@@ -36,7 +36,6 @@ constexpr double kMaxLinearCorrection = 0.2;
 // Work shared among threads comes in blocks of this many bundles or bodies: big enough that
 // claiming a block costs little, small enough that the threads finish a colour together.
 constexpr int kBundlesPerBlock = 4;
-constexpr int kBodiesPerBlock = 256;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
@@ -58,7 +57,7 @@ void WorldImpl::solveSubsteps(double dt) {
   const double h = dt / substeps;
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
-  sb.gather(bodies.items, bodies.alive, def.gravity, h, stepWorkers.threads());
+  sb.gather(bodies.items, bodies.alive, def.gravity, h, stepWorkers);
   contactBundles.assign(contacts, sb);
 
   activeJoints.clear();
@@ -161,17 +160,19 @@ void WorldImpl::solveSubsteps(double dt) {
     });
     if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
   }
-  sb.finish(bodies.items);
+  stepWorkers.stage(bodyBlocks, [&](int block, int) {
+    sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
+  });
 
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.
   fastBodies.clear();
   for (int e = 0; e < sb.dynamicCount(); ++e) {
-    const BodySim& sim = sb.sim(e);
-    const Body& body = bodies.items[sim.slot];
-    const double reach = (body.center - sim.center0).norm() +
-                         std::abs(body.angle - sim.angle0) * body.maxExtent;
+    const BodyState& s = sb.state(e);
+    const BodyStart& start = sb.start(e);
+    const Body& body = bodies.items[start.slot];
+    const double reach = std::hypot(s.dx, s.dy) + std::abs(s.turned) * body.maxExtent;
     if (reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
-      fastBodies.push_back({sim.slot, sim.center0, sim.angle0});
+      fastBodies.push_back({start.slot, sb.sim(e).center0, start.angle0});
     }
   }
 }
