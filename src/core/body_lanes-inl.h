@@ -38,15 +38,22 @@ struct Bodies {
   V<D> vx, vy, w, turned, dx, dy, qc, qs;
 };
 
-inline int64_t readOffset(int64_t stored) { return stored < 0 ? ~stored : stored; }
-inline int64_t writeOffset(int64_t stored, int64_t sink) { return stored < 0 ? sink : stored; }
+inline int32_t readOffset(int32_t stored) { return stored < 0 ? ~stored : stored; }
+inline int32_t writeOffset(int32_t stored, int32_t sink) { return stored < 0 ? sink : stored; }
+
+// The offsets of a group of lanes, widened to the lanes of D.
+template <class D>
+HWY_INLINE hn::Vec<hn::RebindToSigned<D>> loadOffsets(D /*d*/, const int32_t* stored) {
+  const hn::RebindToSigned<D> di;
+  const hn::Rebind<int32_t, D> d32;
+  return hn::PromoteTo(di, hn::Load(d32, stored));
+}
 
 // --- any instruction set: a gather or scatter per field ---
 
 template <class D>
-HWY_INLINE Bodies<D> loadBodies(D d, const double* states, const int64_t* stored) {
-  const hn::RebindToSigned<D> di;
-  const auto o = hn::Load(di, stored);
+HWY_INLINE Bodies<D> loadBodies(D d, const double* states, const int32_t* stored) {
+  const auto o = loadOffsets(d, stored);
   const auto read = hn::Max(o, hn::Not(o));  // ~o for the negative ones
   Bodies<D> b;
   b.vx = hn::GatherIndex(d, states + kVx, read);
@@ -61,16 +68,15 @@ HWY_INLINE Bodies<D> loadBodies(D d, const double* states, const int64_t* stored
 }
 
 template <class D>
-HWY_INLINE hn::Vec<hn::RebindToSigned<D>> writeOffsets(D /*d*/, const int64_t* stored,
-                                                       int64_t sink) {
+HWY_INLINE hn::Vec<hn::RebindToSigned<D>> writeOffsets(D d, const int32_t* stored, int32_t sink) {
   const hn::RebindToSigned<D> di;
-  const auto o = hn::Load(di, stored);
+  const auto o = loadOffsets(d, stored);
   return hn::IfThenElse(hn::Lt(o, hn::Zero(di)), hn::Set(di, sink), o);
 }
 
 /// Writes velocities back (the velocity kernels change nothing else).
 template <class D>
-HWY_INLINE void storeVelocities(D d, double* states, const int64_t* stored, int64_t sink,
+HWY_INLINE void storeVelocities(D d, double* states, const int32_t* stored, int32_t sink,
                                 const Bodies<D>& b) {
   const auto write = writeOffsets(d, stored, sink);
   hn::ScatterIndex(b.vx, d, states + kVx, write);
@@ -80,7 +86,7 @@ HWY_INLINE void storeVelocities(D d, double* states, const int64_t* stored, int6
 
 /// Writes poses back (the position pass changes nothing else).
 template <class D>
-HWY_INLINE void storePoses(D d, double* states, const int64_t* stored, int64_t sink,
+HWY_INLINE void storePoses(D d, double* states, const int32_t* stored, int32_t sink,
                            const Bodies<D>& b) {
   const auto write = writeOffsets(d, stored, sink);
   hn::ScatterIndex(b.turned, d, states + kTurned, write);
@@ -118,26 +124,26 @@ HWY_INLINE void transpose8(__m512d (&r)[8]) {
   r[7] = _mm512_shuffle_f64x2(u[3], u[7], 0xDD);
 }
 
-HWY_INLINE Bodies<D8> loadBodies(D8 /*d*/, const double* states, const int64_t* stored) {
+HWY_INLINE Bodies<D8> loadBodies(D8 /*d*/, const double* states, const int32_t* stored) {
   __m512d r[8];
   for (int i = 0; i < 8; ++i) r[i] = _mm512_load_pd(states + readOffset(stored[i]));
   transpose8(r);
   return {{r[kVx]}, {r[kVy]}, {r[kW]}, {r[kTurned]}, {r[kDx]}, {r[kDy]}, {r[kQc]}, {r[kQs]}};
 }
 
-HWY_INLINE void storeRows(double* states, const int64_t* stored, int64_t sink, __m512d (&r)[8]) {
+HWY_INLINE void storeRows(double* states, const int32_t* stored, int32_t sink, __m512d (&r)[8]) {
   transpose8(r);  // its own inverse
   for (int i = 0; i < 8; ++i) _mm512_store_pd(states + writeOffset(stored[i], sink), r[i]);
 }
 
-HWY_INLINE void storeVelocities(D8 /*d*/, double* states, const int64_t* stored, int64_t sink,
+HWY_INLINE void storeVelocities(D8 /*d*/, double* states, const int32_t* stored, int32_t sink,
                                 const Bodies<D8>& b) {
   __m512d r[8] = {b.vx.raw, b.vy.raw, b.w.raw, b.turned.raw,
                   b.dx.raw, b.dy.raw, b.qc.raw, b.qs.raw};
   storeRows(states, stored, sink, r);
 }
 
-HWY_INLINE void storePoses(D8 d, double* states, const int64_t* stored, int64_t sink,
+HWY_INLINE void storePoses(D8 d, double* states, const int32_t* stored, int32_t sink,
                            const Bodies<D8>& b) {
   storeVelocities(d, states, stored, sink, b);  // whole rows: the velocities as they were read
 }
@@ -156,7 +162,7 @@ HWY_INLINE void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
   d = _mm256_permute2f128_pd(t1, t3, 0x31);
 }
 
-HWY_INLINE Bodies<D4> loadBodies(D4 /*d*/, const double* states, const int64_t* stored) {
+HWY_INLINE Bodies<D4> loadBodies(D4 /*d*/, const double* states, const int32_t* stored) {
   __m256d lo[4], hi[4];
   for (int i = 0; i < 4; ++i) {
     const double* row = states + readOffset(stored[i]);
@@ -168,7 +174,7 @@ HWY_INLINE Bodies<D4> loadBodies(D4 /*d*/, const double* states, const int64_t* 
   return {{lo[0]}, {lo[1]}, {lo[2]}, {lo[3]}, {hi[0]}, {hi[1]}, {hi[2]}, {hi[3]}};
 }
 
-HWY_INLINE void storeVelocities(D4 /*d*/, double* states, const int64_t* stored, int64_t sink,
+HWY_INLINE void storeVelocities(D4 /*d*/, double* states, const int32_t* stored, int32_t sink,
                                 const Bodies<D4>& b) {
   __m256d r0 = b.vx.raw, r1 = b.vy.raw, r2 = b.w.raw, r3 = b.turned.raw;
   transpose4(r0, r1, r2, r3);
@@ -176,7 +182,7 @@ HWY_INLINE void storeVelocities(D4 /*d*/, double* states, const int64_t* stored,
   for (int i = 0; i < 4; ++i) _mm256_store_pd(states + writeOffset(stored[i], sink), rows[i]);
 }
 
-HWY_INLINE void storePoses(D4 /*d*/, double* states, const int64_t* stored, int64_t sink,
+HWY_INLINE void storePoses(D4 /*d*/, double* states, const int32_t* stored, int32_t sink,
                            const Bodies<D4>& b) {
   __m256d lo[4] = {b.vx.raw, b.vy.raw, b.w.raw, b.turned.raw};
   __m256d hi[4] = {b.dx.raw, b.dy.raw, b.qc.raw, b.qs.raw};

@@ -30,7 +30,7 @@ int startColor(uint64_t key) {
 // fillLane: a Vec2 stored as two doubles and read back at once as one 16-byte vector stalls the
 // processor's store forwarding (math.hpp), and that was most of this stage's time.
 struct LaneBody {
-  int64_t offset;
+  int32_t offset;
   double invMass, invInertia;
   double cx, cy, vx, vy, w;
 };
@@ -39,11 +39,12 @@ LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, i
   const int entry = bodies.entryOf(slot);
   if (entry < 0) {  // static or asleep: the identity row, read only
     const Vec2& c = items[slot].center;
-    return {~(bodies.identityRow() * kStateDoubles), 0.0, 0.0, c.x(), c.y(), 0.0, 0.0, 0.0};
+    return {~static_cast<int32_t>(bodies.identityRow() * kStateDoubles), 0.0, 0.0, c.x(), c.y(),
+            0.0, 0.0, 0.0};
   }
   const BodySim& sim = bodies.sim(entry);
   const BodyState& s = bodies.states()[entry];
-  const int64_t offset = entry * kStateDoubles;
+  const int32_t offset = static_cast<int32_t>(entry * kStateDoubles);
   return {bodies.isDynamicEntry(entry) ? offset : ~offset,
           sim.invMass,
           sim.invInertia,
@@ -75,13 +76,12 @@ void clearPointTotals(BundleExtra& e, int i, int lane) {
 
 // A lane without a contact: it reads the identity row, writes the sink, and every impulse it
 // computes is zero.
-void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int64_t identityOffset) {
+void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOffset) {
   c.offsetA[lane] = c.offsetB[lane] = ~identityOffset;
   c.invMassA[lane] = c.invInertiaA[lane] = c.invMassB[lane] = c.invInertiaB[lane] = 0.0;
   c.normalX[lane] = c.normalY[lane] = c.friction[lane] = 0.0;
-  c.k11[lane] = c.k12[lane] = c.k22[lane] = 0.0;
-  c.inverse11[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
-  c.sequential[lane] = c.againstStatic[lane] = 0.0;
+  c.k12[lane] = c.inverse11[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
+  e.k[0][lane] = e.k[1][lane] = e.sequential[lane] = e.againstStatic[lane] = 0.0;
   e.restitution[lane] = 0.0;
   for (int i = 0; i < 2; ++i) {
     setPoint(c.points[i], lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
@@ -102,7 +102,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   c.normalX[lane] = m.normal.x();
   c.normalY[lane] = m.normal.y();
   c.friction[lane] = contact.friction;
-  c.againstStatic[lane] = a.invMass > 0.0 && b.invMass > 0.0 ? 0.0 : 1.0;
+  e.againstStatic[lane] = a.invMass > 0.0 && b.invMass > 0.0 ? 0.0 : 1.0;
   e.restitution[lane] = contact.restitution;
   const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
   const double mass = a.invMass + b.invMass;
@@ -132,24 +132,27 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
     const double relativeY = (b.vy + b.w * aBx) - (a.vy + a.w * aAx);
     e.approach[i][lane] = relativeX * nx + relativeY * ny;
   }
-  c.k11[lane] = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
-                b.invInertia * normalArmB[0] * normalArmB[0];
-  c.k12[lane] = c.k22[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
+  const double k11 = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
+                     b.invInertia * normalArmB[0] * normalArmB[0];
+  e.k[0][lane] = k11;
+  e.k[1][lane] = e.sequential[lane] = 0.0;
+  c.k12[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
   c.inverse11[lane] = c.points[0].normalMass[lane];
-  c.sequential[lane] = 0.0;
   if (m.pointCount < 2) return;
-  c.k22[lane] = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
-                b.invInertia * normalArmB[1] * normalArmB[1];
-  c.k12[lane] = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
-                b.invInertia * normalArmB[0] * normalArmB[1];
-  if (wellConditioned(c.k11[lane], c.k12[lane], c.k22[lane])) {
-    const double det = c.k11[lane] * c.k22[lane] - c.k12[lane] * c.k12[lane];
-    c.inverse11[lane] = c.k22[lane] / det;
-    c.inverse12[lane] = -c.k12[lane] / det;
-    c.inverse22[lane] = c.k11[lane] / det;
+  const double k22 = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
+                     b.invInertia * normalArmB[1] * normalArmB[1];
+  const double k12 = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
+                     b.invInertia * normalArmB[0] * normalArmB[1];
+  e.k[1][lane] = k22;
+  c.k12[lane] = k12;
+  if (wellConditioned(k11, k12, k22)) {
+    const double det = k11 * k22 - k12 * k12;
+    c.inverse11[lane] = k22 / det;
+    c.inverse12[lane] = -k12 / det;
+    c.inverse22[lane] = k11 / det;
   } else {
     c.inverse11[lane] = 0.0;
-    c.sequential[lane] = 1.0;
+    e.sequential[lane] = 1.0;
   }
 }
 
@@ -221,14 +224,14 @@ void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t l
 }
 
 void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies) {
-  const int64_t identityOffset = bodies.identityRow() * kStateDoubles;
+  const int32_t identityOffset = static_cast<int32_t>(bodies.identityRow() * kStateDoubles);
   for (int k = begin; k < end; ++k) {
     ContactBundle& c = bundles_[k];
     BundleExtra& e = extras_[k];
     for (int lane = c.laneCount; lane < kBundleLanes; ++lane) setEmptyLane(c, e, lane, identityOffset);
     c.anySequential = c.anyRestitution = false;
     for (int lane = 0; lane < c.laneCount; ++lane) {
-      c.anySequential |= c.sequential[lane] != 0.0;
+      c.anySequential |= e.sequential[lane] != 0.0;
       c.anyRestitution |= e.restitution[lane] > 0.0;
     }
   }

@@ -43,19 +43,16 @@ struct alignas(64) ContactBundle {
   ContactBundle() {}  // prepare() writes every field of every lane: no zeroing first
   // BodyState offsets (row * kStateDoubles) of each lane's bodies; a lane that must not write
   // its body back (static, kinematic, an empty lane) holds ~offset.
-  int64_t offsetA[kBundleLanes], offsetB[kBundleLanes];
+  int32_t offsetA[kBundleLanes], offsetB[kBundleLanes];
   double invMassA[kBundleLanes], invInertiaA[kBundleLanes];
   double invMassB[kBundleLanes], invInertiaB[kBundleLanes];
   double normalX[kBundleLanes], normalY[kBundleLanes];
   double friction[kBundleLanes];
-  // The two normal rows' 2x2 block K and its inverse. A one-point lane has K12 = K22 = 0 and
-  // inverse (1 / K11, 0, 0), which the block solve turns into the one-row solve.
-  double k11[kBundleLanes], k12[kBundleLanes], k22[kBundleLanes];
+  // The two normal rows' 2x2 block K: K12 and the inverse (the diagonal is the points' normal
+  // masses' inverse). A one-point lane has K12 = 0 and inverse (1 / K11, 0, 0).
+  double k12[kBundleLanes];
   double inverse11[kBundleLanes], inverse12[kBundleLanes], inverse22[kBundleLanes];
   BundlePoint points[2];
-  // 1 for a two-point lane too ill-conditioned for the block: its points are solved in turn.
-  double sequential[kBundleLanes];
-  double againstStatic[kBundleLanes];  // 1 when one body cannot move (the soft step's spring)
   int laneCount;
   bool anySequential;   // of the lanes, summed up by finishFill()
   bool anyRestitution;
@@ -67,6 +64,10 @@ struct alignas(64) BundleExtra {
   double approach[2][kBundleLanes];  // m/s, the lowest normal speed before a solve (restitution)
   double maxNormalImpulse[2][kBundleLanes];
   double totalNormalImpulse[2][kBundleLanes], totalTangentImpulse[2][kBundleLanes];
+  double k[2][kBundleLanes];           // K11, K22 (the soft step's springs scale with them)
+  double againstStatic[kBundleLanes];  // 1 when one body cannot move (the soft step's spring)
+  // 1 for a two-point lane too ill-conditioned for the block: its points are solved in turn.
+  double sequential[kBundleLanes];
 };
 
 /// One pass of a kernel over some bundles.
@@ -74,7 +75,7 @@ struct BundlePass {
   ContactBundle* bundles = nullptr;
   BundleExtra* extras = nullptr;
   double* states = nullptr;  // SubstepBodies::states(), as doubles
-  int64_t sinkOffset = 0;    // this worker's sink row * kStateDoubles
+  int32_t sinkOffset = 0;    // this worker's sink row * kStateDoubles
   double h = 0.0, inverseH = 0.0;
   bool useBias = false;  // the soft step's push (springs of dynamicSoft and staticSoft)
   bool relax = false;    // add this pass's impulses to the step's totals

@@ -131,30 +131,43 @@ HWY_INLINE void applyNormals(Bodies<D>* a, Bodies<D>* b, const Frame<D>& f, cons
                                              hn::Mul(r2.normalB, amount2))));
 }
 
-// The 2x2 LCP  w = K x + b,  x >= 0,  w >= 0,  x_i w_i = 0  of both normal rows, every case at
-// once, in the order contact_math.hpp tries them: both rows active, the first, the second, none.
-// `mass` is 1 / K_ii. Lanes where no case fits (round-off on a degenerate pair) keep `old`.
+// Both normal rows of a lane at once: the 2x2 LCP of the accumulated impulses x (old: x0),
+//   w = v + K (x - x0) >= 0,  x >= 0,  x_i w_i = 0,
+// where v is each row's speed plus its bias now. It has few enough cases to try them all, in the
+// order contact_math.hpp tries them: both rows push, only the first, only the second, neither.
+// Only K12, K^-1 and m_i = 1 / K_ii enter: "w_i >= 0" is tested as m_i w_i >= 0 (m_i > 0), so
+// the diagonal of K is not kept. A one-point lane has m2 = K12 = 0, and its second row stays 0.
+// Lanes where no case fits (round-off on a degenerate pair) keep x0.
 template <class D>
-HWY_INLINE void solveLcp(D d, const V<D>& k12, const V<D>& inverse11, const V<D>& inverse12,
-                         const V<D>& inverse22, const V<D>& mass1, const V<D>& mass2,
-                         const V<D>& b1, const V<D>& b2, V<D>* x1, V<D>* x2) {
+struct Block {
+  V<D> k12, inverse11, inverse12, inverse22, mass1, mass2;
+};
+
+template <class D>
+HWY_INLINE void solveBlock(D d, const Block<D>& k, const V<D>& v1, const V<D>& v2,
+                           const V<D>& old1, const V<D>& old2, V<D>* x1, V<D>* x2) {
   const V<D> zero = hn::Zero(d);
-  const V<D> both1 = hn::Neg(hn::Add(hn::Mul(inverse11, b1), hn::Mul(inverse12, b2)));
-  const V<D> both2 = hn::Neg(hn::Add(hn::Mul(inverse12, b1), hn::Mul(inverse22, b2)));
+  const V<D> both1 = hn::Sub(old1, hn::Add(hn::Mul(k.inverse11, v1), hn::Mul(k.inverse12, v2)));
+  const V<D> both2 = hn::Sub(old2, hn::Add(hn::Mul(k.inverse12, v1), hn::Mul(k.inverse22, v2)));
   const auto both = hn::And(hn::Ge(both1, zero), hn::Ge(both2, zero));
-  const V<D> first = hn::Neg(hn::Mul(b1, mass1));
-  const auto onlyFirst =
-      hn::And(hn::Ge(first, zero), hn::Ge(hn::Add(hn::Mul(k12, first), b2), zero));
-  const V<D> second = hn::Neg(hn::Mul(b2, mass2));
-  const auto onlySecond =
-      hn::And(hn::Ge(second, zero), hn::Ge(hn::Add(hn::Mul(k12, second), b1), zero));
-  const auto none = hn::And(hn::Ge(b1, zero), hn::Ge(b2, zero));
+  // Only the first: x2 = 0.
+  const V<D> first = hn::Sub(old1, hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))));
+  const V<D> w2 = hn::Sub(hn::Mul(k.mass2, hn::Add(v2, hn::Mul(k.k12, hn::Sub(first, old1)))), old2);
+  const auto onlyFirst = hn::And(hn::Ge(first, zero), hn::Ge(w2, zero));
+  // Only the second: x1 = 0.
+  const V<D> second = hn::Sub(old2, hn::Mul(k.mass2, hn::Sub(v2, hn::Mul(k.k12, old1))));
+  const V<D> w1 = hn::Sub(hn::Mul(k.mass1, hn::Add(v1, hn::Mul(k.k12, hn::Sub(second, old2)))), old1);
+  const auto onlySecond = hn::And(hn::Ge(second, zero), hn::Ge(w1, zero));
+  // Neither.
+  const V<D> rest1 = hn::Sub(hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))), old1);
+  const V<D> rest2 = hn::Sub(hn::Mul(k.mass2, hn::Sub(v2, hn::Mul(k.k12, old1))), old2);
+  const auto none = hn::And(hn::Ge(rest1, zero), hn::Ge(rest2, zero));
   const auto fits = hn::Or(hn::Or(both, onlyFirst), hn::Or(onlySecond, none));
   const V<D> new1 = hn::IfThenElse(both, both1, hn::IfThenElseZero(onlyFirst, first));
   const V<D> new2 = hn::IfThenElse(
       both, both2, hn::IfThenElseZero(hn::AndNot(onlyFirst, onlySecond), second));
-  *x1 = hn::IfThenElse(fits, new1, *x1);
-  *x2 = hn::IfThenElse(fits, new2, *x2);
+  *x1 = hn::IfThenElse(fits, new1, old1);
+  *x2 = hn::IfThenElse(fits, new2, old2);
 }
 
 // Friction rows of both points, clamped to the cone of their current normal impulses.
@@ -182,88 +195,81 @@ HWY_INLINE void solveFriction(D d, ContactBundle& c, BundleExtra& extra, size_t 
 
 // Both normal rows. Not touching (s > 0): close the gap within the sub-step, no further (a
 // target of -s / h). Touching: rigid, or in the soft step's biased pass a damped spring that
-// pushes out at most maxPushVelocity; as springs the block is K + diag(gamma) (contact_solver
-// _substeps history: one soft row  x = max(x - s m (v + bias) - i x, 0)  is that block's row).
+// pushes out at most maxPushVelocity. A spring row with accumulated impulse x satisfies
+//   v + bias + gamma x >= 0,  gamma = K_ii s / m  (s, m: the feedback's impulse and mass scales),
+// which is the one-row update of feedback.hpp solved exactly; for both rows it is the block
+// with K + diag(gamma) and v + gamma x0.
 template <class D>
 HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, BundleExtra& extra,
                              size_t lane, const Frame<D>& f, const Arms<D> (&r)[2],
                              const V<D> (&s)[2], Bodies<D>* a, Bodies<D>* b) {
-  const V<D> zero = hn::Zero(d);
+  const V<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const V<D> inverseH = hn::Set(d, pass.inverseH);
-  V<D> bias[2], gamma[2];
-  const V<D> k11 = hn::Load(d, c.k11 + lane), k12 = hn::Load(d, c.k12 + lane);
-  const V<D> k22 = hn::Load(d, c.k22 + lane);
-  const V<D> kDiagonal[2] = {k11, k22};
-  bool soft = false;
-  V<D> spring = zero;
-  if (pass.useBias) {
-    const auto stiffer = hn::Gt(hn::Load(d, c.againstStatic + lane), zero);
-    const V<D> rate = hn::IfThenElse(stiffer, hn::Set(d, pass.staticSoft.rate),
-                                     hn::Set(d, pass.dynamicSoft.rate));
-    spring = hn::IfThenElse(
-        stiffer, hn::Set(d, pass.staticSoft.impulseScale / pass.staticSoft.massScale),
-        hn::Set(d, pass.dynamicSoft.impulseScale / pass.dynamicSoft.massScale));
-    const V<D> maxPush = hn::Set(d, -pass.maxPushVelocity);
-    for (int i = 0; i < 2; ++i) {
-      const auto apart = hn::Gt(s[i], zero);
-      bias[i] = hn::IfThenElse(apart, hn::Mul(s[i], inverseH), hn::Max(hn::Mul(rate, s[i]), maxPush));
-      gamma[i] = hn::IfThenElseZero(hn::Not(apart), hn::Mul(kDiagonal[i], spring));
-    }
-    soft = true;
-  } else {
-    for (int i = 0; i < 2; ++i) {
-      bias[i] = hn::IfThenElseZero(hn::Gt(s[i], zero), hn::Mul(s[i], inverseH));
-      gamma[i] = zero;
-    }
-  }
   BundlePoint& p1 = c.points[0];
   BundlePoint& p2 = c.points[1];
   const V<D> old1 = hn::Load(d, p1.normalImpulse + lane), old2 = hn::Load(d, p2.normalImpulse + lane);
   const V<D> linear =
       hn::Add(hn::Mul(f.nx, hn::Sub(b->vx, a->vx)), hn::Mul(f.ny, hn::Sub(b->vy, a->vy)));
-  const V<D> vn1 = hn::Sub(hn::Add(linear, hn::Mul(b->w, r[0].normalB)), hn::Mul(a->w, r[0].normalA));
-  const V<D> vn2 = hn::Sub(hn::Add(linear, hn::Mul(b->w, r[1].normalB)), hn::Mul(a->w, r[1].normalA));
+  const V<D> vn[2] = {
+      hn::Sub(hn::Add(linear, hn::Mul(b->w, r[0].normalB)), hn::Mul(a->w, r[0].normalA)),
+      hn::Sub(hn::Add(linear, hn::Mul(b->w, r[1].normalB)), hn::Mul(a->w, r[1].normalA))};
   if (c.anyRestitution) {  // the speed they met at: the lowest before any solve of the step
     for (int i = 0; i < 2; ++i) {
       double* approach = extra.approach[i] + lane;
-      hn::Store(hn::Min(hn::Load(d, approach), i == 0 ? vn1 : vn2), d, approach);
+      hn::Store(hn::Min(hn::Load(d, approach), vn[i]), d, approach);
     }
   }
-  // With x the accumulated impulses, vn + bias = K (x - x_old) + (vn_old + bias).
-  const V<D> b1 = hn::Sub(hn::Add(vn1, bias[0]), hn::Add(hn::Mul(k11, old1), hn::Mul(k12, old2)));
-  const V<D> b2 = hn::Sub(hn::Add(vn2, bias[1]), hn::Add(hn::Mul(k12, old1), hn::Mul(k22, old2)));
-  const V<D> mass1 = hn::Load(d, p1.normalMass + lane), mass2 = hn::Load(d, p2.normalMass + lane);
-  V<D> x1 = old1, x2 = old2;
-  if (!soft) {
-    solveLcp(d, k12, hn::Load(d, c.inverse11 + lane), hn::Load(d, c.inverse12 + lane),
-             hn::Load(d, c.inverse22 + lane), mass1, mass2, b1, b2, &x1, &x2);
+  Block<D> k{hn::Load(d, c.k12 + lane),      hn::Load(d, c.inverse11 + lane),
+             hn::Load(d, c.inverse12 + lane), hn::Load(d, c.inverse22 + lane),
+             hn::Load(d, p1.normalMass + lane), hn::Load(d, p2.normalMass + lane)};
+  V<D> v[2];
+  if (!pass.useBias) {
+    for (int i = 0; i < 2; ++i) {
+      v[i] = hn::Add(vn[i], hn::IfThenElseZero(hn::Gt(s[i], zero), hn::Mul(s[i], inverseH)));
+    }
   } else {
-    // K + diag(gamma), inverted here: one-point lanes (K22 = 0) only have their first row.
-    const V<D> s11 = hn::Add(k11, gamma[0]), s22 = hn::Add(k22, gamma[1]);
-    const auto twoPoints = hn::Gt(k22, zero);
-    const V<D> one = hn::Set(d, 1.0);
-    const V<D> det = hn::IfThenElse(twoPoints, hn::Sub(hn::Mul(s11, s22), hn::Mul(k12, k12)), one);
+    const auto stiffer = hn::Gt(hn::Load(d, extra.againstStatic + lane), zero);
+    const V<D> rate = hn::IfThenElse(stiffer, hn::Set(d, pass.staticSoft.rate),
+                                     hn::Set(d, pass.dynamicSoft.rate));
+    const V<D> spring = hn::IfThenElse(
+        stiffer, hn::Set(d, pass.staticSoft.impulseScale / pass.staticSoft.massScale),
+        hn::Set(d, pass.dynamicSoft.impulseScale / pass.dynamicSoft.massScale));
+    const V<D> maxPush = hn::Set(d, -pass.maxPushVelocity);
+    const V<D> olds[2] = {old1, old2};
+    V<D> diagonal[2];  // K_ii + gamma_i
+    for (int i = 0; i < 2; ++i) {
+      const auto apart = hn::Gt(s[i], zero);
+      const V<D> kii = hn::Load(d, extra.k[i] + lane);
+      const V<D> gamma = hn::IfThenElseZero(hn::Not(apart), hn::Mul(kii, spring));
+      const V<D> bias = hn::IfThenElse(apart, hn::Mul(s[i], inverseH),
+                                       hn::Max(hn::Mul(rate, s[i]), maxPush));
+      v[i] = hn::Add(hn::Add(vn[i], bias), hn::Mul(gamma, olds[i]));
+      diagonal[i] = hn::Add(kii, gamma);
+    }
+    // The softened block's inverse, here; one-point lanes (m2 = 0) keep only their first row.
+    const auto twoPoints = hn::Gt(k.mass2, zero);
+    const V<D> det = hn::IfThenElse(
+        twoPoints, hn::Sub(hn::Mul(diagonal[0], diagonal[1]), hn::Mul(k.k12, k.k12)), one);
     const V<D> inverseDet = hn::Div(one, det);
-    const V<D> softMass1 = hn::IfThenElseZero(hn::Gt(s11, zero), hn::Div(one, hn::IfThenElse(hn::Gt(s11, zero), s11, one)));
-    const V<D> inverse11 = hn::IfThenElse(twoPoints, hn::Mul(s22, inverseDet), softMass1);
-    const V<D> inverse12 = hn::IfThenElseZero(twoPoints, hn::Neg(hn::Mul(k12, inverseDet)));
-    const V<D> inverse22 = hn::IfThenElseZero(twoPoints, hn::Mul(s11, inverseDet));
-    const V<D> softMass2 = hn::IfThenElseZero(twoPoints, hn::Div(one, hn::IfThenElse(twoPoints, s22, one)));
-    solveLcp(d, k12, inverse11, inverse12, inverse22, softMass1, softMass2, b1, b2, &x1, &x2);
+    k.mass1 = hn::IfThenElseZero(hn::Gt(k.mass1, zero), hn::Div(one, hn::IfThenElse(hn::Gt(k.mass1, zero), diagonal[0], one)));
+    k.mass2 = hn::IfThenElseZero(twoPoints, hn::Div(one, hn::IfThenElse(twoPoints, diagonal[1], one)));
+    k.inverse11 = hn::IfThenElse(twoPoints, hn::Mul(diagonal[1], inverseDet), k.mass1);
+    k.inverse12 = hn::IfThenElseZero(twoPoints, hn::Neg(hn::Mul(k.k12, inverseDet)));
+    k.inverse22 = hn::IfThenElseZero(twoPoints, hn::Mul(diagonal[0], inverseDet));
   }
+  V<D> x1, x2;
+  solveBlock(d, k, v[0], v[1], old1, old2, &x1, &x2);
   if (c.anySequential) {
-    // Nearly coincident points: one row after the other, the second seeing the first's impulse
-    // through the coupling K12 (each a spring when soft: gamma on its diagonal).
-    const auto sequential = hn::Gt(hn::Load(d, c.sequential + lane), zero);
-    const V<D> one = hn::Set(d, 1.0);
-    const V<D> m1 = soft ? hn::Div(one, hn::Add(k11, gamma[0])) : mass1;
-    const V<D> m2 = soft ? hn::Div(one, hn::Add(k22, gamma[1])) : mass2;
-    const V<D> seq1 = hn::Max(hn::Sub(old1, hn::Mul(m1, hn::Add(hn::Add(vn1, bias[0]), hn::Mul(gamma[0], old1)))), zero);
-    const V<D> vn2After = hn::Add(vn2, hn::Mul(k12, hn::Sub(seq1, old1)));
-    const V<D> seq2 = hn::Max(hn::Sub(old2, hn::Mul(m2, hn::Add(hn::Add(vn2After, bias[1]), hn::Mul(gamma[1], old2)))), zero);
+    // Nearly coincident points, too ill-conditioned for the block: one row after the other,
+    // the second seeing the first's impulse through the coupling K12.
+    const auto sequential = hn::Gt(hn::Load(d, extra.sequential + lane), zero);
+    const V<D> seq1 = hn::Max(hn::Sub(old1, hn::Mul(k.mass1, v[0])), zero);
+    const V<D> v2After = hn::Add(v[1], hn::Mul(k.k12, hn::Sub(seq1, old1)));
+    const V<D> seq2 = hn::Max(hn::Sub(old2, hn::Mul(k.mass2, v2After)), zero);
     x1 = hn::IfThenElse(sequential, seq1, x1);
     x2 = hn::IfThenElse(sequential, seq2, x2);
   }
+  (void)one;
   applyNormals(a, b, f, r[0], r[1], hn::Sub(x1, old1), hn::Sub(x2, old2));
   hn::Store(x1, d, p1.normalImpulse + lane);
   hn::Store(x2, d, p2.normalImpulse + lane);
@@ -435,9 +441,11 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
   // As contact_math.hpp's wellConditioned: k11^2 < 1000 det.
   const auto block = hn::And(twoPoints, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, 1000.0), det)));
   const V<D> inverseDet = hn::Div(one, hn::IfThenElse(block, det, one));
-  V<D> x1 = zero, x2 = zero;
-  solveLcp(d, k12, hn::Mul(k22, inverseDet), hn::Neg(hn::Mul(k12, inverseDet)), hn::Mul(k11, inverseDet),
-           mass1, mass2, correction[0], correction[1], &x1, &x2);
+  // Pushes x >= 0 with K x + correction >= 0, complementary: the block from no push at all.
+  V<D> x1, x2;
+  solveBlock(d, Block<D>{k12, hn::Mul(k22, inverseDet), hn::Neg(hn::Mul(k12, inverseDet)),
+                         hn::Mul(k11, inverseDet), mass1, mass2},
+             correction[0], correction[1], zero, zero, &x1, &x2);
   // One point, or a pair too degenerate for the block: the deeper point alone.
   const auto deeper1 = hn::Le(correction[0], correction[1]);
   const V<D> alone1 = hn::IfThenElseZero(hn::Or(hn::Not(twoPoints), deeper1), hn::Neg(hn::Mul(correction[0], mass1)));

@@ -98,13 +98,13 @@ void WorldImpl::solveSubsteps(double dt) {
       const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
       stepWorkers.stage(blocksOf(end - first, kBundlesPerBlock), [&](int block, int worker) {
         BundlePass mine = pass;
-        mine.sinkOffset = sb.sinkRow(worker) * kStateDoubles;
+        mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(worker) * kStateDoubles);
         const int begin = first + block * kBundlesPerBlock;
         kernel(mine, begin, std::min(end, begin + kBundlesPerBlock), false);
       });
     }
     BundlePass mine = pass;
-    mine.sinkOffset = sb.sinkRow(0) * kStateDoubles;
+    mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(0) * kStateDoubles);
     kernel(mine, contactBundles.overflowBegin(), contactBundles.bundleCount(), true);
   };
 
@@ -193,14 +193,14 @@ void WorldImpl::correctSubstepPositions(BundlePass pass) {
       deepest.assign(static_cast<size_t>(blocks), 0.0);
       stepWorkers.stage(blocks, [&](int block, int worker) {
         BundlePass mine = pass;
-        mine.sinkOffset = substepBodies.sinkRow(worker) * kStateDoubles;
+        mine.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(worker) * kStateDoubles);
         const int begin = first + block * kBundlesPerBlock;
         deepest[block] =
             solveBundlePositions(mine, begin, std::min(end, begin + kBundlesPerBlock), false);
       });
       for (const double d : deepest) worst = std::min(worst, d);
     }
-    pass.sinkOffset = substepBodies.sinkRow(0) * kStateDoubles;
+    pass.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(0) * kStateDoubles);
     worst = std::min(worst, solveBundlePositions(pass, contactBundles.overflowBegin(),
                                                  contactBundles.bundleCount(), true));
     if (jointsOk && worst >= -3.0 * def.linearSlop) break;
