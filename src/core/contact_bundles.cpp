@@ -55,16 +55,17 @@ LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, i
           s.w};
 }
 
-void setPoint(BundlePoint& p, int lane, double anchorAx, double anchorAy, double anchorBx,
-              double anchorBy, double baseSeparation, double normalMass, double tangentMass,
-              double normalImpulse, double tangentImpulse) {
+void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorAy,
+              double anchorBx, double anchorBy, double baseSeparation, double normalMass,
+              double tangentMass, double normalImpulse, double tangentImpulse) {
+  BundlePoint& p = c.points[i];
   p.anchorAx[lane] = anchorAx;
   p.anchorAy[lane] = anchorAy;
   p.anchorBx[lane] = anchorBx;
   p.anchorBy[lane] = anchorBy;
-  p.baseSeparation[lane] = baseSeparation;
-  p.normalMass[lane] = normalMass;
-  p.tangentMass[lane] = tangentMass;
+  c.baseSeparation[i][lane] = static_cast<float>(baseSeparation);
+  c.normalMass[i][lane] = static_cast<float>(normalMass);
+  c.tangentMass[i][lane] = static_cast<float>(tangentMass);
   p.normalImpulse[lane] = normalImpulse;
   p.tangentImpulse[lane] = tangentImpulse;
 }
@@ -84,7 +85,7 @@ void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOf
   e.k[0][lane] = e.k[1][lane] = e.sequential[lane] = e.againstStatic[lane] = 0.0;
   e.restitution[lane] = 0.0;
   for (int i = 0; i < 2; ++i) {
-    setPoint(c.points[i], lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
     clearPointTotals(e, i, lane);
   }
 }
@@ -101,7 +102,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   c.invInertiaB[lane] = b.invInertia;
   c.normalX[lane] = m.normal.x();
   c.normalY[lane] = m.normal.y();
-  c.friction[lane] = contact.friction;
+  c.friction[lane] = static_cast<float>(contact.friction);
   e.againstStatic[lane] = a.invMass > 0.0 && b.invMass > 0.0 ? 0.0 : 1.0;
   e.restitution[lane] = contact.restitution;
   const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
@@ -110,7 +111,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   for (int i = 0; i < 2; ++i) {
     clearPointTotals(e, i, lane);
     if (i >= m.pointCount) {
-      setPoint(c.points[i], lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+      setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
       continue;
     }
     const ManifoldPoint& mp = m.points[i];
@@ -123,7 +124,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
                            b.invInertia * normalArmB[i] * normalArmB[i];
     const double tangentK = mass + a.invInertia * tangentArmA * tangentArmA +
                             b.invInertia * tangentArmB * tangentArmB;
-    setPoint(c.points[i], lane, aAx, aAy, aBx, aBy,
+    setPoint(c, i, lane, aAx, aAy, aBx, aBy,
              mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
              normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
              contact.normalImpulse[i] / substeps, contact.tangentImpulse[i] / substeps);
@@ -137,19 +138,19 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   e.k[0][lane] = k11;
   e.k[1][lane] = e.sequential[lane] = 0.0;
   c.k12[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
-  c.inverse11[lane] = c.points[0].normalMass[lane];
+  c.inverse11[lane] = c.normalMass[0][lane];
   if (m.pointCount < 2) return;
   const double k22 = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
                      b.invInertia * normalArmB[1] * normalArmB[1];
   const double k12 = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
                      b.invInertia * normalArmB[0] * normalArmB[1];
   e.k[1][lane] = k22;
-  c.k12[lane] = k12;
+  c.k12[lane] = static_cast<float>(k12);
   if (wellConditioned(k11, k12, k22)) {
     const double det = k11 * k22 - k12 * k12;
-    c.inverse11[lane] = k22 / det;
-    c.inverse12[lane] = -k12 / det;
-    c.inverse22[lane] = k11 / det;
+    c.inverse11[lane] = static_cast<float>(k22 / det);
+    c.inverse12[lane] = static_cast<float>(-k12 / det);
+    c.inverse22[lane] = static_cast<float>(k11 / det);
   } else {
     c.inverse11[lane] = 0.0;
     e.sequential[lane] = 1.0;

@@ -34,29 +34,35 @@ constexpr int kBundleLanes = 8;
 struct BundlePoint {
   double anchorAx[kBundleLanes], anchorAy[kBundleLanes];  // m, from A's centre of mass
   double anchorBx[kBundleLanes], anchorBy[kBundleLanes];  // m, from B's centre of mass
-  double baseSeparation[kBundleLanes];  // m, the separation minus n . (aB - aA): see above
-  double normalMass[kBundleLanes], tangentMass[kBundleLanes];  // kg; 0 for an absent point
   double normalImpulse[kBundleLanes], tangentImpulse[kBundleLanes];  // N s, accumulated
 };
 
-struct alignas(64) ContactBundle {
-  ContactBundle() {}  // prepare() writes every field of every lane: no zeroing first
+// Effective masses and the like only set how fast the iterations converge, not what they
+// conserve (impulses, masses, anchors and normals stay doubles: both bodies of a row take the
+// same impulse at the same point), so they are kept as floats: the sweeps stream these bundles
+// from memory, and a smaller bundle is a faster sweep.
+struct ContactBundle {
+  ContactBundle() {}  // fill() writes every field of every lane: no zeroing first
   // BodyState offsets (row * kStateDoubles) of each lane's bodies; a lane that must not write
   // its body back (static, kinematic, an empty lane) holds ~offset.
-  int32_t offsetA[kBundleLanes], offsetB[kBundleLanes];
+  alignas(64) int32_t offsetA[kBundleLanes];
+  int32_t offsetB[kBundleLanes];
   double invMassA[kBundleLanes], invInertiaA[kBundleLanes];
   double invMassB[kBundleLanes], invInertiaB[kBundleLanes];
   double normalX[kBundleLanes], normalY[kBundleLanes];
-  double friction[kBundleLanes];
+  BundlePoint points[2];
+  float friction[kBundleLanes];
   // The two normal rows' 2x2 block K: K12 and the inverse (the diagonal is the points' normal
   // masses' inverse). A one-point lane has K12 = 0 and inverse (1 / K11, 0, 0).
-  double k12[kBundleLanes];
-  double inverse11[kBundleLanes], inverse12[kBundleLanes], inverse22[kBundleLanes];
-  BundlePoint points[2];
-  int laneCount;
+  float k12[kBundleLanes];
+  float inverse11[kBundleLanes], inverse12[kBundleLanes], inverse22[kBundleLanes];
+  float baseSeparation[2][kBundleLanes];  // m, the separation minus n . (aB - aA): see above
+  float normalMass[2][kBundleLanes], tangentMass[2][kBundleLanes];  // kg; 0: an absent point
+  alignas(64) int laneCount;
   bool anySequential;   // of the lanes, summed up by finishFill()
   bool anyRestitution;
 };
+static_assert(sizeof(ContactBundle) % 64 == 0 && alignof(ContactBundle) == 64, "whole lines");
 
 struct alignas(64) BundleExtra {
   BundleExtra() {}  // as ContactBundle

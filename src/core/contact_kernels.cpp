@@ -29,6 +29,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 // Below this turn a sub-step's rotation is a Taylor series (solver_body.hpp: rotationBy).
 constexpr double kSmallTurn = 0.02;
 
+template <class D>
+HWY_INLINE V<D> loadFloat(D d, const float* p) {
+  const hn::Rebind<float, D> df;
+  return hn::PromoteTo(d, hn::Load(df, p));
+}
+
 // What every row of a lane group needs: the normal and tangent t = perp(n), the masses, and
 // half the bodies' relative move as it shifts the lever arms (contact_bundles.hpp).
 template <class D>
@@ -79,8 +85,9 @@ HWY_INLINE Arms<D> arms(D d, const BundlePoint& p, size_t lane, const Frame<D>& 
 
 // The separation now: the anchors turned with their bodies (contact_bundles.hpp).
 template <class D>
-HWY_INLINE V<D> separation(D d, const BundlePoint& p, size_t lane, const Frame<D>& f,
+HWY_INLINE V<D> separation(D d, const ContactBundle& c, int i, size_t lane, const Frame<D>& f,
                            const Bodies<D>& a, const Bodies<D>& b) {
+  const BundlePoint& p = c.points[i];
   const V<D> ax = hn::Load(d, p.anchorAx + lane), ay = hn::Load(d, p.anchorAy + lane);
   const V<D> bx = hn::Load(d, p.anchorBx + lane), by = hn::Load(d, p.anchorBy + lane);
   const V<D> turnedAx = hn::Sub(hn::Mul(a.qc, ax), hn::Mul(a.qs, ay));
@@ -89,7 +96,7 @@ HWY_INLINE V<D> separation(D d, const BundlePoint& p, size_t lane, const Frame<D
   const V<D> turnedBy = hn::Add(hn::Mul(b.qs, bx), hn::Mul(b.qc, by));
   const V<D> gapX = hn::Sub(hn::Add(f.moveX, turnedBx), turnedAx);
   const V<D> gapY = hn::Sub(hn::Add(f.moveY, turnedBy), turnedAy);
-  return hn::Add(hn::Load(d, p.baseSeparation + lane),
+  return hn::Add(loadFloat(d, c.baseSeparation[i] + lane),
                  hn::Add(hn::Mul(f.nx, gapX), hn::Mul(f.ny, gapY)));
 }
 
@@ -175,13 +182,13 @@ template <class D>
 HWY_INLINE void solveFriction(D d, ContactBundle& c, BundleExtra& extra, size_t lane,
                               bool relax, const Frame<D>& f, const Arms<D> (&r)[2],
                               Bodies<D>* a, Bodies<D>* b) {
-  const V<D> friction = hn::Load(d, c.friction + lane);
+  const V<D> friction = loadFloat(d, c.friction + lane);
   for (int i = 0; i < 2; ++i) {
     BundlePoint& p = c.points[i];
     const V<D> vt = rowSpeed(*a, *b, f.tx, f.ty, r[i].tangentA, r[i].tangentB);
     const V<D> old = hn::Load(d, p.tangentImpulse + lane);
     const V<D> maxFriction = hn::Mul(friction, hn::Load(d, p.normalImpulse + lane));
-    const V<D> total = hn::Min(hn::Max(hn::Sub(old, hn::Mul(hn::Load(d, p.tangentMass + lane), vt)),
+    const V<D> total = hn::Min(hn::Max(hn::Sub(old, hn::Mul(loadFloat(d, c.tangentMass[i] + lane), vt)),
                                        hn::Neg(maxFriction)),
                                maxFriction);
     applyRow(a, b, f, f.tx, f.ty, r[i].tangentA, r[i].tangentB, hn::Sub(total, old));
@@ -219,9 +226,9 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
       hn::Store(hn::Min(hn::Load(d, approach), vn[i]), d, approach);
     }
   }
-  Block<D> k{hn::Load(d, c.k12 + lane),      hn::Load(d, c.inverse11 + lane),
-             hn::Load(d, c.inverse12 + lane), hn::Load(d, c.inverse22 + lane),
-             hn::Load(d, p1.normalMass + lane), hn::Load(d, p2.normalMass + lane)};
+  Block<D> k{loadFloat(d, c.k12 + lane),      loadFloat(d, c.inverse11 + lane),
+             loadFloat(d, c.inverse12 + lane), loadFloat(d, c.inverse22 + lane),
+             loadFloat(d, c.normalMass[0] + lane), loadFloat(d, c.normalMass[1] + lane)};
   V<D> v[2];
   if (!pass.useBias) {
     for (int i = 0; i < 2; ++i) {
@@ -294,8 +301,7 @@ HWY_INLINE void solveGroup(D d, const BundlePass& pass, ContactBundle& c, Bundle
   Bodies<D> b = loadBodies(d, pass.states, c.offsetB + lane);
   const Frame<D> f = frame(d, c, lane, a, b);
   const Arms<D> r[2] = {arms(d, c.points[0], lane, f), arms(d, c.points[1], lane, f)};
-  const V<D> s[2] = {separation(d, c.points[0], lane, f, a, b),
-                     separation(d, c.points[1], lane, f, a, b)};
+  const V<D> s[2] = {separation(d, c, 0, lane, f, a, b), separation(d, c, 1, lane, f, a, b)};
   // Friction first: non-penetration matters more, so the normal impulses get the last word.
   solveFriction(d, c, extra, lane, pass.relax, f, r, &a, &b);
   solveNormals(d, pass, c, extra, lane, f, r, s, &a, &b);
@@ -351,7 +357,7 @@ HWY_INLINE void restituteGroup(D d, const BundlePass& pass, ContactBundle& c, Bu
     const V<D> vn = rowSpeed(a, b, f.nx, f.ny, r.normalA, r.normalB);
     const V<D> target = hn::Neg(hn::Mul(restitution, approach));
     const V<D> total =
-        hn::Max(hn::Sub(old, hn::Mul(hn::Load(d, p.normalMass + lane), hn::Sub(vn, target))), zero);
+        hn::Max(hn::Sub(old, hn::Mul(loadFloat(d, c.normalMass[i] + lane), hn::Sub(vn, target))), zero);
     const V<D> delta = hn::IfThenElseZero(bounces, hn::Sub(total, old));
     hn::Store(hn::Add(old, delta), d, p.normalImpulse + lane);
     double* sum = extra.totalNormalImpulse[i] + lane;
@@ -409,8 +415,8 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
     const V<D> turnedAy = hn::Add(hn::Mul(a.qs, ax), hn::Mul(a.qc, ay));
     const V<D> turnedBx = hn::Sub(hn::Mul(b.qc, bx), hn::Mul(b.qs, by));
     const V<D> turnedBy = hn::Add(hn::Mul(b.qs, bx), hn::Mul(b.qc, by));
-    const V<D> s = separation(d, p, lane, f, a, b);
-    const auto present = hn::Gt(hn::Load(d, p.normalMass + lane), zero);
+    const V<D> s = separation(d, c, i, lane, f, a, b);
+    const auto present = hn::Gt(loadFloat(d, c.normalMass[i] + lane), zero);
     deepest = hn::Min(deepest, hn::IfThenElseZero(present, s));
     // The shared point: midway between the two anchors now (pB - pA = move + turnedB - turnedA
     // + aA - aB).
@@ -433,7 +439,7 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
   const V<D> k22 = hn::Add(m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[1], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[1], rnB[1]))));
   const V<D> k12 = hn::Add(m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[1]))));
   const V<D> one = hn::Set(d, 1.0);
-  const auto twoPoints = hn::Gt(hn::Load(d, c.points[1].normalMass + lane), zero);
+  const auto twoPoints = hn::Gt(loadFloat(d, c.normalMass[1] + lane), zero);
   const auto positive1 = hn::Gt(k11, zero), positive2 = hn::Gt(k22, zero);
   const V<D> mass1 = hn::IfThenElseZero(positive1, hn::Div(one, hn::IfThenElse(positive1, k11, one)));
   const V<D> mass2 = hn::IfThenElseZero(positive2, hn::Div(one, hn::IfThenElse(positive2, k22, one)));
