@@ -122,6 +122,9 @@ struct WorldImpl {
   void createProxies(Body& body);
   void destroyProxies(Body& body);
   void markMoved(int proxy);
+  bool movedThisStep(int proxy) const {
+    return proxy < static_cast<int>(proxyMoved.size()) && proxyMoved[proxy];
+  }
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
   void updateProxies(Body& body, bool forced);
   void destroyContactsOf(int bodySlot);

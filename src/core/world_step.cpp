@@ -71,8 +71,7 @@ void WorldImpl::findNewContacts() {
       pairs.emplace_back(std::min(proxy, other), std::max(proxy, other));
     });
   }
-  for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
-  movedProxies.clear();
+  // proxyMoved stays set until the narrow phase has checked the contacts of the moved proxies.
 
   std::vector<Contact>& fresh = newContacts;
   fresh.clear();
@@ -92,6 +91,8 @@ void WorldImpl::findNewContacts() {
     contact.bodyB = slotB;
     contact.shapeA = shapeA;
     contact.shapeB = shapeB;
+    contact.proxyA = slotA == static_cast<int>(tree.userData(p) >> 8) ? p : q;
+    contact.proxyB = contact.proxyA == p ? q : p;
     const Shape& sa = bodies.items[slotA].shapes[shapeA];
     const Shape& sb = bodies.items[slotB].shapes[shapeB];
     contact.friction = mixFriction(sa.friction, sb.friction);
@@ -123,9 +124,10 @@ void WorldImpl::updateContacts() {
       Contact& contact = contacts[i];
       const Body& a = bodies.items[contact.bodyA];
       const Body& b = bodies.items[contact.bodyB];
-      const int proxyA = a.proxies[contact.shapeA], proxyB = b.proxies[contact.shapeB];
       uint8_t fate = kKeep;
-      if (!tree.fatAabb(proxyA).overlaps(tree.fatAabb(proxyB))) {
+      // Fat boxes can only have parted if one of them moved this step.
+      const bool moved = movedThisStep(contact.proxyA) || movedThisStep(contact.proxyB);
+      if (moved && !tree.fatAabb(contact.proxyA).overlaps(tree.fatAabb(contact.proxyB))) {
         fate = kDrop;
       } else if (isMoving(a) || isMoving(b)) {
         // Two bodies that cannot move relative to each other keep last step's manifold.
@@ -157,6 +159,8 @@ void WorldImpl::updateContacts() {
     ++write;
   }
   contacts.resize(write);
+  for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
+  movedProxies.clear();
 }
 
 // Points farther apart than this are left out of the manifold. Beyond the fixed margin, as far as
