@@ -66,10 +66,18 @@ void SimWorld::restoreStart() {
       impulse2d::addScene(scene, *world_, &error);
     }
   }
+  if (threads_ > 0) world_->settings().threads = threads_;
   respawnStartUrdfs();
 }
 
 void SimWorld::reset() { restoreStart(); }
+
+void SimWorld::setThreads(int threads) {
+  threads_ = threads;
+  if (threads_ > 0) world_->settings().threads = threads_;
+}
+
+int SimWorld::threads() const { return world_->settings().threads; }
 
 bool SimWorld::addScene(const std::string& yamlText, std::string* error) {
   Scene scene;

@@ -114,6 +114,7 @@ void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("bodies", sim_.bodyCount());
   status.add("contacts", sim_.contactCount());
   status.add("requested rate (steps/s)", rate_);
+  status.add("threads", sim_.threads());
   statsStart_ = now;
   statsSimStartNs_ = sim_.simTimeNs();
   statsSteps_ = 0;
