@@ -10,6 +10,8 @@ add_message_files(DIRECTORY msg FILES RemovedBody.msg RemovedBodies.msg)
 add_service_files(DIRECTORY srv FILES
   ApplyWrench.srv CreateJoint.srv DeleteBody.srv DeleteJoint.srv GetBodyState.srv LoadScene.srv
   SetBodyState.srv SetJointMotor.srv SpawnBody.srv SpawnUrdf.srv Step.srv)
+# ~get_body_properties
+add_service_files(DIRECTORY srv FILES GetBodyProperties.srv)
 generate_messages(DEPENDENCIES geometry_msgs std_msgs)
 
 catkin_package(

@@ -330,6 +330,40 @@ std::string toJointDef(const impulse2d::Joint& msg, JointDef* out, Notes* notes)
   return "";
 }
 
+uint8_t toBodyTypeMsg(BodyType type) {
+  switch (type) {
+    case BodyType::Static:
+      return impulse2d::Body::STATIC;
+    case BodyType::Kinematic:
+      return impulse2d::Body::KINEMATIC;
+    case BodyType::Dynamic:
+      break;
+  }
+  return impulse2d::Body::DYNAMIC;
+}
+
+impulse2d::Shape toShapeMsg(const ShapeProperties& shape) {
+  impulse2d::Shape msg;
+  if (shape.circle) {
+    msg.type = impulse2d::Shape::CIRCLE;
+    msg.radius = shape.radius;
+    msg.offset.x = shape.center.x();
+    msg.offset.y = shape.center.y();
+  } else {
+    msg.type = impulse2d::Shape::POLYGON;
+    for (const Vec2& v : shape.vertices) {
+      geometry_msgs::Point p;
+      p.x = v.x();
+      p.y = v.y();
+      msg.vertices.push_back(p);
+    }
+  }
+  msg.density = shape.density;
+  msg.friction = shape.friction == 0.0 ? impulse2d::Shape::FRICTIONLESS : shape.friction;
+  msg.restitution = shape.restitution;
+  return msg;
+}
+
 impulse2d::Contact toContactMsg(const ContactSnapshot& contact) {
   impulse2d::Contact msg;
   msg.body_a = contact.bodyA;

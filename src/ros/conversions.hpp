@@ -12,6 +12,7 @@
 #include <impulse2d/Body.h>
 #include <impulse2d/Contact.h>
 #include <impulse2d/Joint.h>
+#include <impulse2d/Shape.h>
 
 #include <string>
 #include <vector>
@@ -50,6 +51,12 @@ std::string toBodyDef(const impulse2d::Body& msg, BodyDef* out, Notes* notes = n
 
 /// A request's Joint as a JointDef; the bodies stay named (msg.body_a, msg.body_b).
 std::string toJointDef(const impulse2d::Joint& msg, JointDef* out, Notes* notes = nullptr);
+
+uint8_t toBodyTypeMsg(BodyType type);
+
+/// A shape as a spawn request would give it (GetBodyProperties.srv): POLYGON with its vertices
+/// or CIRCLE with radius and offset; a friction of 0 as FRICTIONLESS.
+impulse2d::Shape toShapeMsg(const ShapeProperties& shape);
 
 /// A contact in the plane's 2D coordinates (z = 0), as the services use them.
 impulse2d::Contact toContactMsg(const ContactSnapshot& contact);

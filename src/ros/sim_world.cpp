@@ -15,6 +15,16 @@ namespace {
 
 std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
+void outline(const Shape& shape, ShapeOutline* out) {
+  out->circle = shape.type == ShapeType::Circle;
+  if (out->circle) {
+    out->center = shape.circle.center;
+    out->radius = shape.circle.radius;
+  } else {
+    out->vertices.assign(shape.polygon.vertices, shape.polygon.vertices + shape.polygon.count);
+  }
+}
+
 // m: a force applied closer than this to the centre of mass is applied there, for a note.
 constexpr double kWrenchArmWorthNoting = 1e-3;
 
@@ -249,6 +259,33 @@ bool SimWorld::getBodyState(const std::string& name, BodySnapshot* out, std::str
   return true;
 }
 
+bool SimWorld::getBodyProperties(const std::string& name, BodyProperties* out,
+                                 std::string* error) const {
+  const BodyId id = world_->findBody(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
+    return false;
+  }
+  const Body& body = world_->body(id);
+  out->type = body.type;
+  out->mass = body.mass;
+  out->inertia = body.inertia;
+  out->localCenter = body.localCenter;
+  out->linearDamping = body.linearDamping;
+  out->angularDamping = body.angularDamping;
+  out->bullet = body.bullet;
+  out->shapes.clear();
+  for (const Shape& shape : body.shapes) {
+    ShapeProperties p;
+    outline(shape, &p);
+    p.density = shape.density;
+    p.friction = shape.friction;
+    p.restitution = shape.restitution;
+    out->shapes.push_back(std::move(p));
+  }
+  return true;
+}
+
 void SimWorld::step() {
   for (Wrench& w : wrenches_) {
     if (!world_->isValid(w.body)) {
@@ -321,16 +358,8 @@ std::vector<BodySnapshot> SimWorld::bodies(bool withShapes) const {
     snap.awake = body.awake;
     if (withShapes) {
       for (const Shape& shape : body.shapes) {
-        ShapeOutline outline;
-        outline.circle = shape.type == ShapeType::Circle;
-        if (outline.circle) {
-          outline.center = shape.circle.center;
-          outline.radius = shape.circle.radius;
-        } else {
-          outline.vertices.assign(shape.polygon.vertices,
-                                  shape.polygon.vertices + shape.polygon.count);
-        }
-        snap.shapes.push_back(std::move(outline));
+        snap.shapes.emplace_back();
+        outline(shape, &snap.shapes.back());
       }
     }
     out.push_back(std::move(snap));

@@ -28,6 +28,23 @@ struct ShapeOutline {
   std::vector<Vec2> vertices;
 };
 
+/// A shape as the world holds it, with its material (~get_body_properties).
+struct ShapeProperties : ShapeOutline {
+  double density = 0.0;
+  double friction = 0.0;
+  double restitution = 0.0;
+};
+
+/// What the world made of a body besides its state, every default applied.
+struct BodyProperties {
+  BodyType type = BodyType::Dynamic;
+  double mass = 0.0, inertia = 0.0;  ///< 0 for static and kinematic bodies
+  Vec2 localCenter = Vec2::Zero();   ///< centre of mass in the body frame
+  double linearDamping = 0.0, angularDamping = 0.0;
+  bool bullet = false;
+  std::vector<ShapeProperties> shapes;
+};
+
 struct BodySnapshot {
   int index = -1;  ///< the body's slot: stable while it lives, used as a marker id
   std::string name;
@@ -126,6 +143,7 @@ class SimWorld {
   bool setBodyState(const std::string& name, const Vec2& position, double angle,
                     const Vec2& linearVelocity, double angularVelocity, std::string* error);
   bool getBodyState(const std::string& name, BodySnapshot* out, std::string* error) const;
+  bool getBodyProperties(const std::string& name, BodyProperties* out, std::string* error) const;
 
   // URDF models (sim_world_urdf.cpp). A model spawned with `atStart` is part of the start state
   // that reset() restores.

@@ -9,6 +9,7 @@
 #include <impulse2d/CreateJoint.h>
 #include <impulse2d/DeleteBody.h>
 #include <impulse2d/DeleteJoint.h>
+#include <impulse2d/GetBodyProperties.h>
 #include <impulse2d/GetBodyState.h>
 #include <impulse2d/JointCommand.h>
 #include <impulse2d/LoadScene.h>
@@ -81,6 +82,7 @@ class WorldNode {
   bool loadScene(LoadScene::Request& req, LoadScene::Response& res);
   bool applyWrench(ApplyWrench::Request& req, ApplyWrench::Response& res);
   bool getBodyState(GetBodyState::Request& req, GetBodyState::Response& res);
+  bool getBodyProperties(GetBodyProperties::Request& req, GetBodyProperties::Response& res);
   bool setBodyState(SetBodyState::Request& req, SetBodyState::Response& res);
   bool step(Step::Request& req, Step::Response& res);
   bool pause(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);

@@ -42,6 +42,8 @@ void WorldNode::advertiseServices() {
   services_.push_back(pnh_.advertiseService("apply_wrench", &WorldNode::applyWrench, this));
   services_.push_back(pnh_.advertiseService("get_body_state", &WorldNode::getBodyState, this));
   services_.push_back(pnh_.advertiseService("set_body_state", &WorldNode::setBodyState, this));
+  services_.push_back(
+      pnh_.advertiseService("get_body_properties", &WorldNode::getBodyProperties, this));
   services_.push_back(pnh_.advertiseService("step", &WorldNode::step, this));
   services_.push_back(pnh_.advertiseService("pause", &WorldNode::pause, this));
   services_.push_back(pnh_.advertiseService("unpause", &WorldNode::unpause, this));
@@ -128,6 +130,28 @@ bool WorldNode::getBodyState(GetBodyState::Request& req, GetBodyState::Response&
     res.twist.linear.x = body.linearVelocity.x();
     res.twist.linear.y = body.linearVelocity.y();
     res.twist.angular.z = body.angularVelocity;
+  }
+  return answer(res, error);
+}
+
+bool WorldNode::getBodyProperties(GetBodyProperties::Request& req,
+                                  GetBodyProperties::Response& res) {
+  BodyProperties body;
+  std::string error;
+  {
+    Lock lock(*this);
+    sim_.getBodyProperties(req.name, &body, &error);
+  }
+  if (error.empty()) {
+    res.type = toBodyTypeMsg(body.type);
+    res.mass = body.mass;
+    res.inertia = body.inertia;
+    res.center_of_mass.x = body.localCenter.x();
+    res.center_of_mass.y = body.localCenter.y();
+    res.linear_damping = body.linearDamping;
+    res.angular_damping = body.angularDamping;
+    res.bullet = body.bullet;
+    for (const ShapeProperties& shape : body.shapes) res.shapes.push_back(toShapeMsg(shape));
   }
   return answer(res, error);
 }
