@@ -40,7 +40,7 @@ bool escapes(const Body& body, RemovedBody* out) {
 
 std::string metres(double m) {
   char text[32];
-  std::snprintf(text, sizeof(text), "%.3g m", m);
+  std::snprintf(text, sizeof(text), "%.4g m", m);
   return text;
 }
 
