@@ -6,7 +6,7 @@ find_package(catkin REQUIRED COMPONENTS
 add_message_files(DIRECTORY msg FILES
   Body.msg Contact.msg ContactArray.msg Joint.msg JointCommand.msg Shape.msg)
 # ~removed_bodies
-add_message_files(DIRECTORY msg FILES RemovedBody.msg RemovedBodies.msg)
+add_message_files(DIRECTORY msg FILES RemovedBodies.msg RemovedBody.msg)
 add_service_files(DIRECTORY srv FILES
   ApplyWrench.srv CreateJoint.srv DeleteBody.srv DeleteJoint.srv GetBodyState.srv LoadScene.srv
   SetBodyState.srv SetJointMotor.srv SpawnBody.srv SpawnUrdf.srv Step.srv)
