@@ -21,21 +21,19 @@ namespace {
 // without bound.
 constexpr size_t kMaxReports = 1024;
 
-// False while the body may stay, else why it goes.
-bool escapes(const Body& body, RemovedBody* out) {
+// Null while the body may stay, else why it goes.
+const char* escapeReason(const Body& body, RemovalCause* cause) {
   const bool finite = isFinite(body.center) && isFinite(body.xf.p) && std::isfinite(body.angle) &&
                       isFinite(body.linearVelocity) && std::isfinite(body.angularVelocity);
   if (!finite) {
-    out->reason = "its state stopped being finite";
-    out->cause = RemovalCause::Overflow;
-    return true;
+    *cause = RemovalCause::Overflow;
+    return "its state stopped being finite";
   }
   if (std::abs(body.center.x()) > kWorldExtent || std::abs(body.center.y()) > kWorldExtent) {
-    out->reason = "it left the world extent of 1e7 m";
-    out->cause = RemovalCause::LeftWorldExtent;
-    return true;
+    *cause = RemovalCause::LeftWorldExtent;
+    return "it left the world extent of 1e7 m";
   }
-  return false;
+  return nullptr;
 }
 
 std::string metres(double m) {
@@ -64,7 +62,7 @@ struct Floor {
   double bottom(const Body& body) const { return down.dot(body.center) + body.maxExtent; }
 };
 
-// Largest and smallest of dot(p, d) over the box's corners.
+// How far the box reaches along d: the largest dot(p, d) over its corners.
 double deepestCorner(const Aabb& box, const Vec2& d) {
   return std::max(box.lower.x() * d.x(), box.upper.x() * d.x()) +
          std::max(box.lower.y() * d.y(), box.upper.y() * d.y());
@@ -154,10 +152,10 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
     }
     for (const int slot : group) {
       Body& body = bodies.items[slot];
-      if (held || momentumDown < 0.0) {
-        body.lost = false;
-        continue;
-      }
+      const bool lost = !held && momentumDown >= 0.0;
+      const bool reported = body.lost;
+      body.lost = lost;
+      if (!lost || (reported && !def.removeLostBodies)) continue;
       const double depth = floor.top(body) - floor.deepest;
       std::string reason = "lost for good: it fell " + metres(depth) +
                            " below every static body, more than their height of " +
@@ -165,12 +163,11 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
       if (def.removeLostBodies) {
         removeLost->push_back(RemovedBody{body.id, body.name, body.xf.p, std::move(reason),
                                           RemovalCause::LostForGood});
-      } else if (!body.lost) {
-        body.lost = true;
-        ++lostBodyCount;
-        if (lostBodies.size() < kMaxReports) {
-          lostBodies.push_back(LostBody{body.id, body.name, body.xf.p, depth, std::move(reason)});
-        }
+        continue;
+      }
+      ++lostBodyCount;
+      if (lostBodies.size() < kMaxReports) {
+        lostBodies.push_back(LostBody{body.id, body.name, body.xf.p, depth, std::move(reason)});
       }
     }
   }
@@ -198,8 +195,10 @@ void World::removeEscapedBodies() {
   for (size_t i = 0; i < w.bodies.items.size(); ++i) {
     const Body& body = w.bodies.items[i];
     if (!w.bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
-    RemovedBody report{body.id, body.name, body.xf.p, "", RemovalCause::LeftWorldExtent};
-    if (escapes(body, &report)) escaped.push_back(std::move(report));
+    RemovalCause cause;
+    if (const char* why = escapeReason(body, &cause)) {
+      escaped.push_back(RemovedBody{body.id, body.name, body.xf.p, why, cause});
+    }
   }
   for (RemovedBody& report : escaped) remove(std::move(report));
   escaped.clear();
