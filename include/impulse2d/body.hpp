@@ -40,6 +40,7 @@ struct alignas(64) Body {
 
   double sleepTime = 0.0;  ///< s the body has been still
   int islandFlag = 0;      ///< scratch for island building
+  bool lost = false;       ///< reported lost for good (World::takeLostBodies), not back since
 
   /// Velocity of a world point attached to the body.
   Vec2 velocityAt(const Vec2& worldPoint) const {

@@ -1,11 +1,14 @@
 #include "substep_bodies.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include <impulse2d/limits.hpp>
 
 namespace impulse2d {
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
-                           const Vec2& gravity, double h, StepWorkers& workers) {
+                           const Vec2& gravity, double h, int substeps, StepWorkers& workers) {
   bodies_ = &bodies;
   const int slots = static_cast<int>(bodies.size());
   const int blocks = (slots + kSlotsPerBlock - 1) / kSlotsPerBlock;
@@ -34,19 +37,28 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   starts_.resize(static_cast<size_t>(movingCount_));
   loads_.resize(static_cast<size_t>(dynamicCount_));
   entryOfSlot_.resize(bodies.size());
+  overflowedOfBlock_.resize(static_cast<size_t>(blocks));
   workers.stage(blocks, [&](int block, int) {
     int next[2] = {blockFirst_[2 * block], dynamicCount_ + blockFirst_[2 * block + 1]};
+    overflowedOfBlock_[block].clear();
     for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
       const int kind = rowOf(i);
       entryOfSlot_[i] = kind == 0 ? -1 : next[kind - 1]++;
-      if (kind != 0) add(bodies[i], i, entryOfSlot_[i], gravity, h);
+      if (kind != 0 && !add(bodies[i], i, entryOfSlot_[i], gravity, h, substeps)) {
+        overflowedOfBlock_[block].push_back(i);
+      }
     }
   });
+  overflowed_.clear();
+  for (const std::vector<int>& list : overflowedOfBlock_) {
+    overflowed_.insert(overflowed_.end(), list.begin(), list.end());
+  }
   // The identity row and the sinks.
   std::fill(states_.begin() + movingCount_, states_.end(), BodyState());
 }
 
-void SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravity, double h) {
+bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravity, double h,
+                        int substeps) {
   BodyState& state = states_[entry];
   state = BodyState();
   state.vx = body.linearVelocity.x();
@@ -72,10 +84,22 @@ void SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravi
     // Implicit damping: stable for any coefficient and sub-step.
     if (body.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * body.linearDamping);
     if (body.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * body.angularDamping);
+    // The source of non-finite impulses: a force too large for the body's mass, which within
+    // the step would take it faster than across the whole world. It stands still with infinite
+    // mass for the step, before any impulse, and is removed at its end (world_bounds.cpp).
+    const double maxSpeed = kWorldExtent / (h * substeps);
+    auto fits = [&](double v, double dv) { return std::abs(v) + substeps * std::abs(dv) <= maxSpeed; };
+    if (!(fits(state.vx, load.dvx) && fits(state.vy, load.dvy) && fits(state.w, load.dw))) {
+      state.vx = state.vy = state.w = 0.0;
+      sim.invMass = sim.invInertia = 0.0;
+      load = BodyLoad();
+      return false;
+    }
   } else {
     start.kinematicVelocity = body.linearVelocity;
     start.kinematicAngularVelocity = body.angularVelocity;
   }
+  return true;
 }
 
 void SubstepBodies::integrateVelocities(int begin, int end) {

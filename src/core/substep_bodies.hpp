@@ -61,8 +61,11 @@ class SubstepBodies {
  public:
   /// Starts a step of sub-steps of h: a row for every living, awake, non-static body (dynamic
   /// first, in slot order), then the identity row and `workers` sinks.
+  /// A body that a force would push faster than across the world within the step is held still
+  /// with infinite mass instead, and listed in overflowed().
   void gather(const std::vector<Body>& bodies, const std::vector<char>& alive, const Vec2& gravity,
-              double h, StepWorkers& workers);
+              double h, int substeps, StepWorkers& workers);
+  const std::vector<int>& overflowed() const { return overflowed_; }
 
   /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).
   int64_t readRow(int slot) const {
@@ -107,7 +110,8 @@ class SubstepBodies {
 
  private:
   static constexpr int kSlotsPerBlock = 1024;
-  void add(const Body& body, int slot, int entry, const Vec2& gravity, double h);
+  /// Fills the entry's rows; false for a body held still (see gather()).
+  bool add(const Body& body, int slot, int entry, const Vec2& gravity, double h, int substeps);
 
   const std::vector<Body>* bodies_ = nullptr;
   std::vector<BodyState> states_;
@@ -116,6 +120,8 @@ class SubstepBodies {
   std::vector<BodyStart> starts_;
   std::vector<int> entryOfSlot_;  // -1 when the body has no row
   std::vector<int> blockFirst_;   // gather(): each block's first dynamic and kinematic row
+  std::vector<std::vector<int>> overflowedOfBlock_;
+  std::vector<int> overflowed_;  // slots, in slot order
   int dynamicCount_ = 0, movingCount_ = 0;
 };
 

@@ -57,7 +57,8 @@ void WorldImpl::solveSubsteps(double dt) {
   const double h = dt / substeps;
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
-  sb.gather(bodies.items, bodies.alive, def.gravity, h, stepWorkers);
+  sb.gather(bodies.items, bodies.alive, def.gravity, h, substeps, stepWorkers);
+  overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
   contactBundles.assign(contacts, sb);
 
   activeJoints.clear();
