@@ -6,6 +6,9 @@ target_include_directories(impulse2d_core PUBLIC ${PROJECT_SOURCE_DIR}/include
 # Highway: the contact kernels' SIMD, compiled for every x86 instruction set and chosen when the
 # program starts (src/core/contact_kernels.cpp); oneTBB: the step's threads (step_workers.cpp).
 find_package(HWY REQUIRED)
+# catkin_lint knows a FindTBB module of ROS's cmake_modules package; Debian's libtbb-dev ships
+# its own TBBConfig.cmake, which this finds.
+#catkin_lint: ignore_once missing_cmake_modules
 find_package(TBB REQUIRED)
 target_link_libraries(impulse2d_core PUBLIC Eigen3::Eigen PRIVATE hwy::hwy TBB::tbb)
 # Bit-identical results on every instruction set: no multiply-add contracted into one rounding.
