@@ -40,6 +40,9 @@ struct alignas(64) Body {
 
   double sleepTime = 0.0;  ///< s the body has been still
   int islandFlag = 0;      ///< scratch for island building
+  /// Where the body was when the fat boxes of all its shapes were last placed: while it has
+  /// moved less than their margin since, no shape can have left its box.
+  Transform proxyXf;
   bool lost = false;       ///< reported lost for good (World::takeLostBodies), not back since
 
   /// Velocity of a world point attached to the body.

@@ -28,6 +28,7 @@ void WorldImpl::markMoved(int proxy) {
 
 void WorldImpl::createProxies(Body& body) {
   body.proxies.clear();
+  body.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
     const int proxy =
@@ -49,6 +50,7 @@ void WorldImpl::destroyProxies(Body& body) {
 }
 
 void WorldImpl::updateProxies(Body& body, bool forced) {
+  if (forced) body.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf);
     const int proxy = body.proxies[i];

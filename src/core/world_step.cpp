@@ -36,6 +36,21 @@ void World::step() {
   ++w.steps;
 }
 
+namespace {
+
+// Whether no point of the body has moved as far as the fat boxes' margin since they were placed:
+// at most the shift of its origin plus the chord its farthest point turned through,
+// reach * 2 sin(turn / 2) = reach * sqrt(2 - 2 cos(turn)).
+bool movedLessThanMargin(const Body& body) {
+  const double dx = body.xf.p.x() - body.proxyXf.p.x(), dy = body.xf.p.y() - body.proxyXf.p.y();
+  const double cosTurn = body.proxyXf.q.c * body.xf.q.c + body.proxyXf.q.s * body.xf.q.s;
+  const double reach = body.maxExtent + std::hypot(body.localCenter.x(), body.localCenter.y());
+  const double chord = reach * std::sqrt(std::max(0.0, 2.0 - 2.0 * cosTurn));
+  return std::sqrt(dx * dx + dy * dy) + chord < 0.5 * kAabbMargin;
+}
+
+}  // namespace
+
 void WorldImpl::updateBroadPhase() {
   // In parallel: the shapes of moving bodies that left their fat boxes (most move less than the
   // margin and need nothing). Then in slot order, one thread: the tree moves them.
@@ -46,12 +61,15 @@ void WorldImpl::updateBroadPhase() {
     std::vector<std::pair<int, Aabb>>& out = refits[block];
     out.clear();
     for (int i = block * kBodiesPerBlock; i < std::min(slots, (block + 1) * kBodiesPerBlock); ++i) {
-      const Body& body = bodies.items[i];
+      Body& body = bodies.items[i];
       if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+      if (movedLessThanMargin(body)) continue;
+      const size_t before = out.size();
       for (size_t k = 0; k < body.shapes.size(); ++k) {
         const Aabb box = computeAabb(body.shapes[k], body.xf);
         if (!tree.fatAabb(body.proxies[k]).contains(box)) out.emplace_back(body.proxies[k], box);
       }
+      if (out.size() - before == body.shapes.size()) body.proxyXf = body.xf;  // all placed anew
     }
   });
   for (const std::vector<std::pair<int, Aabb>>& block : refits) {
