@@ -3,6 +3,7 @@
 #include <oneapi/tbb/task_arena.h>
 #include <oneapi/tbb/task_group.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -45,7 +46,7 @@ struct StepWorkers::Shared {
     const Block* fn = nullptr;
   };
 
-  explicit Shared(int threads) : threads(threads), arena(threads) {}
+  explicit Shared(int threads) : arena(threads) {}
 
   // Claims and runs blocks of `stage`, its own run first, until none is left.
   static void work(Stage& stage, int worker) {
@@ -76,7 +77,6 @@ struct StepWorkers::Shared {
     }
   }
 
-  int threads;
   tbb::task_arena arena;
   // This session's stages, by number: a deque keeps them in place as it grows, so a helper that
   // still holds a finished stage only finds no block left in it.
@@ -122,13 +122,14 @@ void StepWorkers::stage(int blocks, const Block& fn) {
     for (int block = 0; block < blocks; ++block) fn(block, 0);
     return;
   }
-  Shared::Stage& stage = shared_->stages.emplace_back(threads_);
+  const int runs = std::min(threads_, blocks);
+  Shared::Stage& stage = shared_->stages.emplace_back(runs);
   stage.blocks = blocks;
   stage.fn = &fn;
-  for (int r = 0; r < threads_; ++r) {  // run r: blocks [r blocks / threads, (r + 1) ...)
-    stage.runs[r].next.store(static_cast<int>(int64_t(r) * blocks / threads_),
+  for (int r = 0; r < runs; ++r) {  // run r: blocks [r blocks / runs, (r + 1) blocks / runs)
+    stage.runs[r].next.store(static_cast<int>(int64_t(r) * blocks / runs),
                              std::memory_order_relaxed);
-    stage.runs[r].end = static_cast<int>(int64_t(r + 1) * blocks / threads_);
+    stage.runs[r].end = static_cast<int>(int64_t(r + 1) * blocks / runs);
   }
   shared_->current.store(&stage, std::memory_order_release);
   Shared::work(stage, 0);
