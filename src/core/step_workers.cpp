@@ -1,5 +1,6 @@
 #include "step_workers.hpp"
 
+#include <oneapi/tbb/info.h>
 #include <oneapi/tbb/task_arena.h>
 #include <oneapi/tbb/task_group.h>
 
@@ -89,7 +90,9 @@ StepWorkers::StepWorkers() = default;
 StepWorkers::~StepWorkers() = default;
 
 void StepWorkers::setThreads(int threads) {
-  threads = threads < 1 ? 1 : threads;
+  // More threads than the processor runs at once would only wait for each other (and TBB warns
+  // that it has no workers for them): the result is the same on any number.
+  threads = std::max(1, std::min(threads, tbb::info::default_concurrency()));
   if (threads == threads_) return;
   threads_ = threads;
   shared_.reset(threads > 1 ? new Shared(threads) : nullptr);

@@ -23,7 +23,8 @@ class StepWorkers {
   StepWorkers(const StepWorkers&) = delete;
   StepWorkers& operator=(const StepWorkers&) = delete;
 
-  /// 1 (the default) runs everything on the stepping thread; more creates the arena.
+  /// 1 (the default) runs everything on the stepping thread; more creates the arena (at most
+  /// as many threads as the processor runs at once).
   void setThreads(int threads);
   int threads() const { return threads_; }
 
