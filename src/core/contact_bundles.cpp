@@ -70,9 +70,10 @@ void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorA
   p.tangentImpulse[lane] = tangentImpulse;
 }
 
-void clearPointTotals(BundleExtra& e, int i, int lane) {
-  e.approach[i][lane] = e.maxNormalImpulse[i][lane] = 0.0;
-  e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
+// What restitution reads of a lane that does not bounce.
+void clearRestitution(BundleExtra& e, int lane) {
+  e.restitution[lane] = 0.0;
+  for (int i = 0; i < 2; ++i) e.approach[i][lane] = e.maxNormalImpulse[i][lane] = 0.0;
 }
 
 // A lane without a contact: it reads the identity row, writes the sink, and every impulse it
@@ -82,17 +83,18 @@ void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOf
   c.invMassA[lane] = c.invInertiaA[lane] = c.invMassB[lane] = c.invInertiaB[lane] = 0.0;
   c.normalX[lane] = c.normalY[lane] = c.friction[lane] = 0.0;
   c.k12[lane] = c.inverse11[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
-  e.k[0][lane] = e.k[1][lane] = e.sequential[lane] = e.againstStatic[lane] = 0.0;
-  e.restitution[lane] = 0.0;
+  c.laneFlags[lane] = 0;
+  e.k[0][lane] = e.k[1][lane] = 0.0;
   for (int i = 0; i < 2; ++i) {
     setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
-    clearPointTotals(e, i, lane);
+    e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
   }
+  clearRestitution(e, lane);
 }
 
 // One contact's lane, as the step begins.
 void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact,
-              const LaneBody& a, const LaneBody& b, int substeps) {
+              const LaneBody& a, const LaneBody& b, int substeps, bool soft) {
   const Manifold& m = contact.manifold;
   c.offsetA[lane] = a.offset;
   c.offsetB[lane] = b.offset;
@@ -103,13 +105,18 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   c.normalX[lane] = m.normal.x();
   c.normalY[lane] = m.normal.y();
   c.friction[lane] = static_cast<float>(contact.friction);
-  e.againstStatic[lane] = a.invMass > 0.0 && b.invMass > 0.0 ? 0.0 : 1.0;
-  e.restitution[lane] = contact.restitution;
+  const bool bounces = contact.restitution > 0.0;
+  uint8_t flags = a.invMass > 0.0 && b.invMass > 0.0 ? 0 : kAgainstStaticLane;
+  if (bounces) {
+    flags |= kRestitutionLane;
+    e.restitution[lane] = contact.restitution;
+  }
   const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
   const double mass = a.invMass + b.invMass;
   double normalArmA[2] = {0.0, 0.0}, normalArmB[2] = {0.0, 0.0};
   for (int i = 0; i < 2; ++i) {
-    clearPointTotals(e, i, lane);
+    e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
+    if (bounces) e.maxNormalImpulse[i][lane] = e.approach[i][lane] = 0.0;
     if (i >= m.pointCount) {
       setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
       continue;
@@ -129,22 +136,27 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
              normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
              contact.normalImpulse[i] / substeps, contact.tangentImpulse[i] / substeps);
     // Normal speed of B relative to A at the point: v + w x r of each.
-    const double relativeX = (b.vx - b.w * aBy) - (a.vx - a.w * aAy);
-    const double relativeY = (b.vy + b.w * aBx) - (a.vy + a.w * aAx);
-    e.approach[i][lane] = relativeX * nx + relativeY * ny;
+    if (bounces) {
+      const double relativeX = (b.vx - b.w * aBy) - (a.vx - a.w * aAy);
+      const double relativeY = (b.vy + b.w * aBx) - (a.vy + a.w * aAx);
+      e.approach[i][lane] = relativeX * nx + relativeY * ny;
+    }
   }
   const double k11 = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
                      b.invInertia * normalArmB[0] * normalArmB[0];
-  e.k[0][lane] = k11;
-  e.k[1][lane] = e.sequential[lane] = 0.0;
+  if (soft) {
+    e.k[0][lane] = k11;
+    e.k[1][lane] = 0.0;
+  }
   c.k12[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
   c.inverse11[lane] = c.normalMass[0][lane];
+  c.laneFlags[lane] = flags;
   if (m.pointCount < 2) return;
   const double k22 = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
                      b.invInertia * normalArmB[1] * normalArmB[1];
   const double k12 = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
                      b.invInertia * normalArmB[0] * normalArmB[1];
-  e.k[1][lane] = k22;
+  if (soft) e.k[1][lane] = k22;
   c.k12[lane] = static_cast<float>(k12);
   if (wellConditioned(k11, k12, k22)) {
     const double det = k11 * k22 - k12 * k12;
@@ -153,7 +165,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
     c.inverse22[lane] = static_cast<float>(k11 / det);
   } else {
     c.inverse11[lane] = 0.0;
-    e.sequential[lane] = 1.0;
+    c.laneFlags[lane] = flags | kSequentialLane;
   }
 }
 
@@ -213,14 +225,14 @@ void ContactBundles::assign(const std::vector<Contact>& contacts, const SubstepB
 }
 
 void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
-                          const SubstepBodies& bodies, const std::vector<Body>& items,
-                          int substeps) {
+                          const SubstepBodies& bodies, const std::vector<Body>& items, int substeps,
+                          bool soft) {
   for (size_t i = first; i < last; ++i) {
     if (laneOf_[i] < 0) continue;
     const Contact& contact = contacts[i];
     const int k = laneOf_[i] / kBundleLanes, lane = laneOf_[i] % kBundleLanes;
     fillLane(bundles_[k], extras_[k], lane, contact, laneBody(bodies, items, contact.bodyA),
-             laneBody(bodies, items, contact.bodyB), substeps);
+             laneBody(bodies, items, contact.bodyB), substeps, soft);
   }
 }
 
@@ -230,10 +242,13 @@ void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies)
     ContactBundle& c = bundles_[k];
     BundleExtra& e = extras_[k];
     for (int lane = c.laneCount; lane < kBundleLanes; ++lane) setEmptyLane(c, e, lane, identityOffset);
-    c.anySequential = c.anyRestitution = false;
-    for (int lane = 0; lane < c.laneCount; ++lane) {
-      c.anySequential |= e.sequential[lane] != 0.0;
-      c.anyRestitution |= e.restitution[lane] > 0.0;
+    uint8_t any = 0;
+    for (int lane = 0; lane < c.laneCount; ++lane) any |= c.laneFlags[lane];
+    c.anySequential = (any & kSequentialLane) != 0;
+    c.anyRestitution = (any & kRestitutionLane) != 0;
+    // Lanes of a bouncing bundle that do not bounce still go through its restitution rows.
+    for (int lane = 0; c.anyRestitution && lane < c.laneCount; ++lane) {
+      if (!(c.laneFlags[lane] & kRestitutionLane)) clearRestitution(e, lane);
     }
   }
 }

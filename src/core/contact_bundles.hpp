@@ -31,6 +31,11 @@ namespace impulse2d {
 
 constexpr int kBundleLanes = 8;
 
+// ContactBundle::laneFlags: a two-point lane too ill-conditioned for the block (its points are
+// solved in turn); a lane that may bounce; one whose other body cannot move (the soft step's
+// spring is stiffer there).
+enum : uint8_t { kSequentialLane = 1, kRestitutionLane = 2, kAgainstStaticLane = 4 };
+
 struct BundlePoint {
   double anchorAx[kBundleLanes], anchorAy[kBundleLanes];  // m, from A's centre of mass
   double anchorBx[kBundleLanes], anchorBy[kBundleLanes];  // m, from B's centre of mass
@@ -61,19 +66,19 @@ struct ContactBundle {
   alignas(64) int laneCount;
   bool anySequential;   // of the lanes, summed up by finishFill()
   bool anyRestitution;
+  uint8_t laneFlags[kBundleLanes];  // kSequentialLane | kRestitutionLane | kAgainstStaticLane
 };
 static_assert(sizeof(ContactBundle) % 64 == 0 && alignof(ContactBundle) == 64, "whole lines");
 
+// Only the totals are kept for every lane; restitution's fields only in bundles that bounce,
+// the diagonal only for the soft step (the fill writes no more than the step reads).
 struct alignas(64) BundleExtra {
   BundleExtra() {}  // as ContactBundle
   double restitution[kBundleLanes];
   double approach[2][kBundleLanes];  // m/s, the lowest normal speed before a solve (restitution)
   double maxNormalImpulse[2][kBundleLanes];
   double totalNormalImpulse[2][kBundleLanes], totalTangentImpulse[2][kBundleLanes];
-  double k[2][kBundleLanes];           // K11, K22 (the soft step's springs scale with them)
-  double againstStatic[kBundleLanes];  // 1 when one body cannot move (the soft step's spring)
-  // 1 for a two-point lane too ill-conditioned for the block: its points are solved in turn.
-  double sequential[kBundleLanes];
+  double k[2][kBundleLanes];  // K11, K22 (the soft step's springs scale with them)
 };
 
 /// One pass of a kernel over some bundles.
@@ -101,7 +106,7 @@ class ContactBundles {
   /// Fills the lanes of the contacts [first, last) as the step begins, reading the contacts in
   /// order; impulses are the arbiters' whole-step ones divided among `substeps`.
   void fill(std::vector<Contact>& contacts, size_t first, size_t last, const SubstepBodies& bodies,
-            const std::vector<Body>& items, int substeps);
+            const std::vector<Body>& items, int substeps, bool soft);
   /// After fill(): the lanes no contact took, and each bundle's summary flags, of the bundles
   /// [begin, end).
   void finishFill(int begin, int end, const SubstepBodies& bodies);

@@ -29,6 +29,15 @@ namespace hn = hwy::HWY_NAMESPACE;
 // Below this turn a sub-step's rotation is a Taylor series (solver_body.hpp: rotationBy).
 constexpr double kSmallTurn = 0.02;
 
+// 1.0 in the lanes whose flags have `bit`, 0 elsewhere, as a mask (the rare lanes: a soft step,
+// a degenerate pair).
+template <class D>
+HWY_INLINE auto laneMask(D d, const uint8_t* flags, uint8_t bit) {
+  HWY_ALIGN double lanes[kBundleLanes];
+  for (size_t i = 0; i < hn::Lanes(d); ++i) lanes[i] = (flags[i] & bit) ? 1.0 : 0.0;
+  return hn::Gt(hn::Load(d, lanes), hn::Zero(d));
+}
+
 template <class D>
 HWY_INLINE V<D> loadFloat(D d, const float* p) {
   const hn::Rebind<float, D> df;
@@ -235,7 +244,7 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
       v[i] = hn::Add(vn[i], hn::IfThenElseZero(hn::Gt(s[i], zero), hn::Mul(s[i], inverseH)));
     }
   } else {
-    const auto stiffer = hn::Gt(hn::Load(d, extra.againstStatic + lane), zero);
+    const auto stiffer = laneMask(d, c.laneFlags + lane, kAgainstStaticLane);
     const V<D> rate = hn::IfThenElse(stiffer, hn::Set(d, pass.staticSoft.rate),
                                      hn::Set(d, pass.dynamicSoft.rate));
     const V<D> spring = hn::IfThenElse(
@@ -269,7 +278,7 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
   if (c.anySequential) {
     // Nearly coincident points, too ill-conditioned for the block: one row after the other,
     // the second seeing the first's impulse through the coupling K12.
-    const auto sequential = hn::Gt(hn::Load(d, extra.sequential + lane), zero);
+    const auto sequential = laneMask(d, c.laneFlags + lane, kSequentialLane);
     const V<D> seq1 = hn::Max(hn::Sub(old1, hn::Mul(k.mass1, v[0])), zero);
     const V<D> v2After = hn::Add(v[1], hn::Mul(k.k12, hn::Sub(seq1, old1)));
     const V<D> seq2 = hn::Max(hn::Sub(old2, hn::Mul(k.mass2, v2After)), zero);

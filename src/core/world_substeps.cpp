@@ -114,7 +114,7 @@ void WorldImpl::solveSubsteps(double dt) {
     stepWorkers.stage(contactBlocks, [&](int block, int) {
       const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
       contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
-                          bodies.items, substeps);
+                          bodies.items, substeps, soft);
     });
     stepWorkers.stage(blocksOf(contactBundles.bundleCount(), kBundlesPerBlock * 8),
                       [&](int block, int) {
