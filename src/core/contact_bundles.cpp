@@ -171,39 +171,63 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
 
 }  // namespace
 
-void ContactBundles::assign(const std::vector<Contact>& contacts, const SubstepBodies& bodies) {
+void ContactBundles::assign(const std::vector<Contact>& contacts,
+                            const std::vector<int>& jointSlots,
+                            const std::vector<std::pair<int, int>>& jointBodies,
+                            const SubstepBodies& bodies) {
   ConstraintColoring coloring;
   coloring.reset(bodies.dynamicCount());
   constexpr int kOverflow = ConstraintColoring::kMaxColors;  // its index in `count`
   laneOf_.resize(contacts.size());
   colorOf_.resize(contacts.size());
-  int count[kOverflow + 1] = {};
+  jointColor_.resize(jointSlots.size());
+  int count[kOverflow + 1] = {};      // constraints, joints and contacts
+  int jointCount[kOverflow + 1] = {};
+  auto dynamicEntry = [&](int slot) {
+    const int entry = bodies.entryOf(slot);
+    return bodies.isDynamicEntry(entry) ? entry : -1;
+  };
+  for (size_t k = 0; k < jointSlots.size(); ++k) {
+    const int color = coloring.assign(dynamicEntry(jointBodies[k].first),
+                                      dynamicEntry(jointBodies[k].second),
+                                      startColor(static_cast<uint64_t>(jointSlots[k]) << 32));
+    jointColor_[k] = color == ConstraintColoring::kOverflow ? kOverflow : color;
+    ++count[jointColor_[k]];
+    ++jointCount[jointColor_[k]];
+  }
   for (size_t i = 0; i < contacts.size(); ++i) {
     const Contact& contact = contacts[i];
     colorOf_[i] = -1;
     if (contact.manifold.pointCount == 0) continue;
-    const int a = bodies.entryOf(contact.bodyA), b = bodies.entryOf(contact.bodyB);
-    const int dynamicA = bodies.isDynamicEntry(a) ? a : -1;
-    const int dynamicB = bodies.isDynamicEntry(b) ? b : -1;
+    const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
     if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
     const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
     colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflow : color;
     ++count[colorOf_[i]];
   }
-  // A colour of a few contacts costs the threads a stage for little work: its contacts join the
+  // A colour of a few constraints costs the threads a stage for little work: they join the
   // overflow. Then each colour's bundles, and last the overflow's.
   int bundleOf[kOverflow + 1];  // each colour's first bundle
+  int compact[kOverflow + 1];   // each colour's index among the colours kept
   int bundles = 0;
   colorStart_.clear();
   for (int color = 0; color <= kOverflow; ++color) {
     if (color < kOverflow && count[color] < kMinColorSize) {
       count[kOverflow] += count[color];
-      bundleOf[color] = -1;
+      jointCount[kOverflow] += jointCount[color];
+      bundleOf[color] = compact[color] = -1;
       continue;
     }
+    compact[color] = static_cast<int>(colorStart_.size());
     colorStart_.push_back(bundles);
     bundleOf[color] = bundles;
-    bundles += (count[color] + kBundleLanes - 1) / kBundleLanes;
+    bundles += (count[color] - jointCount[color] + kBundleLanes - 1) / kBundleLanes;
+  }
+  jointsOfColor_.resize(colorStart_.size());
+  for (std::vector<int>& list : jointsOfColor_) list.clear();
+  for (size_t k = 0; k < jointSlots.size(); ++k) {
+    const int color = compact[jointColor_[k]] < 0 ? kOverflow : jointColor_[k];
+    jointsOfColor_[compact[color]].push_back(jointSlots[k]);
   }
   bundles_.resize(static_cast<size_t>(bundles));
   extras_.resize(static_cast<size_t>(bundles));
@@ -218,8 +242,9 @@ void ContactBundles::assign(const std::vector<Contact>& contacts, const SubstepB
     ++contactCount_;
   }
   for (int color = 0; color <= kOverflow; ++color) {
-    for (int r = 0; bundleOf[color] >= 0 && r < count[color]; r += kBundleLanes) {
-      bundles_[bundleOf[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, count[color] - r);
+    const int lanes = count[color] - jointCount[color];
+    for (int r = 0; bundleOf[color] >= 0 && r < lanes; r += kBundleLanes) {
+      bundles_[bundleOf[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, lanes - r);
     }
   }
 }

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact.hpp"
@@ -100,9 +101,11 @@ struct BundlePass {
 /// The colours' bundles of one step, built from the touching contacts of moving bodies.
 class ContactBundles {
  public:
-  /// Colours the contacts and gives each its lane, colour after colour, then the overflow,
-  /// whose bundles are solved one lane after the other. In the contacts' order, on one thread.
-  void assign(const std::vector<Contact>& contacts, const SubstepBodies& bodies);
+  /// Colours the joints (in the order given) and the contacts (in theirs), and gives each
+  /// contact its lane, colour after colour, then the overflow, whose bundles are solved one lane
+  /// after the other. On one thread.
+  void assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
+              const std::vector<std::pair<int, int>>& jointBodies, const SubstepBodies& bodies);
   /// Fills the lanes of the contacts [first, last) as the step begins, reading the contacts in
   /// order; impulses are the arbiters' whole-step ones divided among `substeps`.
   void fill(std::vector<Contact>& contacts, size_t first, size_t last, const SubstepBodies& bodies,
@@ -114,6 +117,8 @@ class ContactBundles {
   void store(std::vector<Contact>& contacts, size_t first, size_t last) const;
 
   int colorCount() const { return static_cast<int>(colorStart_.size()) - 1; }
+  /// The joints (slots) of a colour; of the overflow for colorCount().
+  const std::vector<int>& jointsOf(int color) const { return jointsOfColor_[color]; }
   int colorBegin(int color) const { return colorStart_[color]; }
   int colorEnd(int color) const { return colorStart_[color + 1]; }
   int overflowBegin() const { return colorStart_.back(); }
@@ -134,6 +139,8 @@ class ContactBundles {
   std::vector<int> colorStart_;  // bundles of colour c: [colorStart_[c], colorStart_[c + 1])
   std::vector<int> laneOf_;      // by contact: bundle * kBundleLanes + lane, or -1: not solved
   std::vector<int> colorOf_;     // by contact, scratch of assign()
+  std::vector<int> jointColor_;  // by joint given to assign(), scratch
+  std::vector<std::vector<int>> jointsOfColor_;  // by colour (compacted), the overflow last
   size_t contactCount_ = 0;
 };
 

@@ -58,8 +58,25 @@ Softness softness(double frequency, double dampingRatio, double effectiveMass, d
   return soft;
 }
 
-void initJoint(Joint& joint, const Body& a, const Body& b) {
-  const JointDef& def = joint.def;
+JointParams paramsOf(const JointDef& def) {
+  JointParams p;
+  p.type = def.type;
+  p.enableLimit = def.enableLimit;
+  p.enableMotor = def.enableMotor;
+  p.collideConnected = def.collideConnected;
+  p.lower = def.lower;
+  p.upper = def.upper;
+  p.motorSpeed = def.motorSpeed;
+  p.maxMotorTorque = def.maxMotorTorque;
+  p.frequency = def.frequency;
+  p.dampingRatio = def.dampingRatio;
+  p.minLength = def.minLength;
+  p.maxLength = def.maxLength;
+  return p;
+}
+
+void initJoint(Joint& joint, const JointDef& def, const Body& a, const Body& b) {
+  joint.def = paramsOf(def);
   joint.localAnchorA = a.xf.applyInverse(def.anchor);
   joint.localAnchorB = b.xf.applyInverse(def.anchor);
   joint.referenceAngle = b.angle - a.angle;

@@ -292,12 +292,13 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
   const int slot = w.joints.acquire();
   Joint& joint = w.joints.items[slot];
   joint.id = JointId{slot, w.joints.generation[slot]};
-  joint.def = def;
+  if (w.jointDefs.size() < w.joints.items.size()) w.jointDefs.resize(w.joints.items.size());
+  w.jointDefs[slot] = def;
   joint.bodyA = def.bodyA.index;
   joint.bodyB = def.bodyB.index;
   Body& a = w.bodies.items[joint.bodyA];
   Body& b = w.bodies.items[joint.bodyB];
-  initJoint(joint, a, b);
+  initJoint(joint, def, a, b);
   w.jointsOfBody[joint.bodyA].push_back(slot);
   w.jointsOfBody[joint.bodyB].push_back(slot);
   if (!def.name.empty()) w.jointByName[def.name] = slot;
@@ -321,7 +322,9 @@ bool World::destroyJoint(JointId id) {
     // The pair may collide again: let the broad phase report it anew.
     for (const int proxy : w.bodies.items[slot].proxies) w.markMoved(proxy);
   }
-  if (!joint.def.name.empty()) w.jointByName.erase(joint.def.name);
+  const std::string& name = w.jointDefs[id.index].name;
+  if (!name.empty()) w.jointByName.erase(name);
+  w.jointDefs[id.index] = JointDef();
   w.joints.release(id.index);
   return true;
 }
@@ -342,7 +345,7 @@ JointId World::findJoint(const std::string& name) const {
 }
 
 const Body& World::body(BodyId id) const { return impl_->bodies.items[id.index]; }
-const JointDef& World::jointDef(JointId id) const { return impl_->joints.items[id.index].def; }
+const JointDef& World::jointDef(JointId id) const { return impl_->jointDefs[id.index]; }
 
 JointState World::jointState(JointId id) const {
   const Joint& joint = impl_->joints.items[id.index];
@@ -423,9 +426,10 @@ bool World::setJointMotor(JointId id, bool enable, double speed, double maxForce
     return false;
   }
   Joint& joint = impl_->joints.items[id.index];
-  joint.def.enableMotor = enable;
-  joint.def.motorSpeed = speed;
-  joint.def.maxMotorTorque = maxForceOrTorque;
+  JointDef& def = impl_->jointDefs[id.index];
+  def.enableMotor = joint.def.enableMotor = enable;
+  def.motorSpeed = joint.def.motorSpeed = speed;
+  def.maxMotorTorque = joint.def.maxMotorTorque = maxForceOrTorque;
   impl_->wakeBody(impl_->bodies.items[joint.bodyA]);
   impl_->wakeBody(impl_->bodies.items[joint.bodyB]);
   return true;

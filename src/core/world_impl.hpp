@@ -81,6 +81,7 @@ struct WorldImpl {
   WorldDef def;
   Slots<Body> bodies;
   Slots<Joint> joints;
+  std::vector<JointDef> jointDefs;  // by joint slot: as created (names), for World::jointDef
   std::vector<std::vector<int>> jointsOfBody;  // by body slot
   std::unordered_map<std::string, int> bodyByName;
   std::unordered_map<std::string, int> jointByName;
@@ -103,7 +104,11 @@ struct WorldImpl {
   SubstepBodies substepBodies;
   ContactBundles contactBundles;
   StepWorkers stepWorkers;
-  std::vector<double> blockDeepest;    // the NGS pass's deepest separation, by block
+  std::vector<std::pair<int, int>> activeJointBodies;  // by active joint: its bodies' slots
+  std::vector<Joint> solverJoints;  // this step's active joints, by colour (copies)
+  std::vector<int> jointStart;      // colour c's in solverJoints: [jointStart[c], [c + 1])
+  std::vector<char> workerJointsOk;    // the NGS pass's verdicts, by worker
+  std::vector<double> workerDeepest;
   std::vector<uint8_t> contactFates;   // the narrow phase's verdict, by contact
   std::vector<std::vector<std::pair<int, Aabb>>> refits;  // proxies that left their fat boxes
   // Reused buffers of the island pass (island_sleep.cpp).
@@ -154,11 +159,19 @@ struct WorldImpl {
   void integrateVelocities(double dt);
   void solve(double dt);
   void solveSubsteps(double dt);
-  /// Runs fn on every active joint with scalar views of its bodies, and writes back what it
-  /// changed (the poses too when `pose`), in the sub-stepping solvers.
-  void forEachJoint(const std::function<void(Joint&, SolverBody&, SolverBody&)>& fn,
-                    bool pose = false);
-  void correctSubstepPositions(BundlePass pass);
+  // The sub-stepping solvers' passes (world_substeps.cpp): an operation on one joint (with
+  // scalar views of its bodies) and one on a range of contact bundles, each told its worker.
+  using JointOp = std::function<void(Joint&, SolverBody&, SolverBody&, int worker)>;
+  using BundleOp =
+      std::function<void(const BundlePass&, int begin, int end, bool oneByOne, int worker)>;
+  /// Runs op on solverJoints[index] and writes back what it changed of its bodies (the poses
+  /// too when `pose`).
+  void onJoint(int index, int worker, const JointOp& op, bool pose);
+  /// One pass over every colour's joints and bundles, then the overflow's; either op may be
+  /// empty.
+  void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
+                  bool pose);
+  void correctSubstepPositions(const BundlePass& pass);
   /// Lists the joints of bodies the step moves, with their solver entries.
   void collectActiveJoints();
   /// Prepares the active joints for a pass of time step dt with the given feedback.

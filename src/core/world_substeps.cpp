@@ -1,7 +1,7 @@
 // Stages 4-6 and 8 of World::step for the sub-stepping solvers: n = velocity_iterations sub-steps
 // of h = dt / n. The narrow phase ran once for the whole step; then
 //
-//   colour the contacts, prepare them (contact_bundles.hpp)
+//   gather the moving bodies, colour the joints and contacts, fill the contact bundles
 //   n times: integrate velocities (h) -> warm start -> solve once -> move (h) -> relax: solve
 //            once more
 //   restitution, store the impulses; SubstepNgs: NGS position passes
@@ -14,9 +14,9 @@
 // SoftStep pushes overlaps and joint gaps apart as stiff, heavily damped springs, and its relax
 // pass takes back the velocity that push added.
 //
-// Contacts are solved a colour at a time, a colour's bundles in SIMD lanes and in blocks shared
-// among the step's threads (step_workers.hpp); joints, and contacts of bodies with more
-// constraints than colours (the overflow), one after the other on the stepping thread.
+// Each pass goes a colour at a time: the colour's joints (one by one, on scalar views of their
+// bodies) and its contact bundles (the SIMD kernels) in blocks shared among the step's threads
+// (step_workers.hpp); then the overflow, one after the other, on the stepping thread.
 #include "world_impl.hpp"
 
 #include <algorithm>
@@ -33,22 +33,58 @@ constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 // The largest position correction one NGS pass applies, so deep overlaps (spawned inside each
 // other) separate over several steps instead of exploding apart.
 constexpr double kMaxLinearCorrection = 0.2;
-// Work shared among threads comes in blocks of this many bundles or bodies: big enough that
+// Work shared among threads comes in blocks of this many bundles or joints: big enough that
 // claiming a block costs little, small enough that the threads finish a colour together.
 constexpr int kBundlesPerBlock = 4;
+constexpr int kJointsPerBlock = 32;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
+
 }  // namespace
 
-void WorldImpl::forEachJoint(const std::function<void(Joint&, SolverBody&, SolverBody&)>& fn,
-                             bool pose) {
-  for (const int j : activeJoints) {
-    Joint& joint = joints.items[j];
-    SolverBody a = substepBodies.view(joint.bodyA), b = substepBodies.view(joint.bodyB);
-    fn(joint, a, b);
-    substepBodies.store(joint.bodyA, a, pose);
-    substepBodies.store(joint.bodyB, b, pose);
+void WorldImpl::onJoint(int index, int worker, const JointOp& op, bool pose) {
+  Joint& joint = solverJoints[index];
+  SolverBody a = substepBodies.view(joint.bodyA), b = substepBodies.view(joint.bodyB);
+  op(joint, a, b, worker);
+  substepBodies.store(joint.bodyA, a, pose);
+  substepBodies.store(joint.bodyB, b, pose);
+}
+
+void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
+                           const BundlePass& pass, bool pose) {
+  SubstepBodies& sb = substepBodies;
+  auto sink = [&](int worker) {
+    BundlePass mine = pass;
+    mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(worker) * kStateDoubles);
+    return mine;
+  };
+  for (int color = 0; color < contactBundles.colorCount(); ++color) {
+    const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
+    const int jointBlocks = jointOp ? blocksOf(endJoint - firstJoint, kJointsPerBlock) : 0;
+    const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
+    const int bundleBlocks = bundleOp ? blocksOf(end - first, kBundlesPerBlock) : 0;
+    stepWorkers.stage(jointBlocks + bundleBlocks, [&](int block, int worker) {
+      if (block < jointBlocks) {
+        const int from = firstJoint + block * kJointsPerBlock;
+        for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
+          onJoint(k, worker, jointOp, pose);
+        }
+        return;
+      }
+      const int begin = first + (block - jointBlocks) * kBundlesPerBlock;
+      bundleOp(sink(worker), begin, std::min(end, begin + kBundlesPerBlock), false, worker);
+    });
+  }
+  // The overflow: one after the other, on this thread.
+  if (jointOp) {
+    const int overflow = contactBundles.colorCount();
+    for (int k = jointStart[overflow]; k < jointStart[overflow + 1]; ++k) {
+      onJoint(k, 0, jointOp, pose);
+    }
+  }
+  if (bundleOp) {
+    bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);
   }
 }
 
@@ -59,9 +95,9 @@ void WorldImpl::solveSubsteps(double dt) {
   SubstepBodies& sb = substepBodies;
   sb.gather(bodies.items, bodies.alive, def.gravity, h, substeps, stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
-  contactBundles.assign(contacts, sb);
 
   activeJoints.clear();
+  activeJointBodies.clear();
   for (size_t j = 0; j < joints.items.size(); ++j) {
     if (!joints.alive[j]) continue;
     Joint& joint = joints.items[j];
@@ -69,10 +105,20 @@ void WorldImpl::solveSubsteps(double dt) {
                        sb.isDynamicEntry(sb.entryOf(joint.bodyB));
     if (!moves) continue;
     activeJoints.push_back(static_cast<int>(j));
+    activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
     if (!def.warmStarting) {
       joint.pointImpulse.setZero();
       joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
     }
+  }
+  contactBundles.assign(contacts, activeJoints, activeJointBodies, sb);
+  // The joints, colour after colour and the overflow last, copied side by side: a colour's
+  // joints are every few in slot order, and a pass over them there waited on memory at each.
+  solverJoints.clear();
+  jointStart.assign(1, 0);
+  for (int color = 0; color <= contactBundles.colorCount(); ++color) {
+    for (const int slot : contactBundles.jointsOf(color)) solverJoints.push_back(joints.items[slot]);
+    jointStart.push_back(static_cast<int>(solverJoints.size()));
   }
 
   BundlePass pass = contactBundles.pass(sb);
@@ -92,75 +138,67 @@ void WorldImpl::solveSubsteps(double dt) {
       std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h), def.jointDampingRatio, h);
   const int bodyBlocks = blocksOf(sb.movingCount(), kBodiesPerBlock);
   const int dynamicBlocks = blocksOf(sb.dynamicCount(), kBodiesPerBlock);
+  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
 
-  // A kernel over every colour, a colour at a time, then the overflow lane by lane.
-  auto overColors = [&](auto kernel) {
-    for (int color = 0; color < contactBundles.colorCount(); ++color) {
-      const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
-      stepWorkers.stage(blocksOf(end - first, kBundlesPerBlock), [&](int block, int worker) {
-        BundlePass mine = pass;
-        mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(worker) * kStateDoubles);
-        const int begin = first + block * kBundlesPerBlock;
-        kernel(mine, begin, std::min(end, begin + kBundlesPerBlock), false);
-      });
-    }
-    BundlePass mine = pass;
-    mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(0) * kStateDoubles);
-    kernel(mine, contactBundles.overflowBegin(), contactBundles.bundleCount(), true);
+  // Joints prepare their rows at the bodies' poses when a pass first reaches them.
+  const Feedback firstFeedback = soft ? jointSpring : rigid;
+  const JointOp prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
+    prepareJoint(j, a, b, def, firstFeedback, h);
+    warmStartJoint(j, a, b);
+  };
+  const JointOp solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
+    solveJointVelocity(j, a, b, h);
+  };
+  const JointOp prepareAndRelax = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
+    prepareJoint(j, a, b, def, rigid, h);
+    solveJointVelocity(j, a, b, h);
+  };
+  auto kernel = [](void (*run)(const BundlePass&, int, int, bool)) -> BundleOp {
+    return [run](const BundlePass& p, int begin, int end, bool oneByOne, int) {
+      run(p, begin, end, oneByOne);
+    };
   };
 
-  {
-    const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
-    stepWorkers.stage(contactBlocks, [&](int block, int) {
-      const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-      contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
-                          bodies.items, substeps, soft);
+  stepWorkers.stage(contactBlocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
+                        bodies.items, substeps, soft);
+  });
+  const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
+  stepWorkers.stage(fillBlocks, [&](int block, int) {
+    const int begin = block * 8 * kBundlesPerBlock;
+    contactBundles.finishFill(begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock),
+                              sb);
+  });
+  for (int substep = 0; substep < substeps; ++substep) {
+    stepWorkers.stage(dynamicBlocks, [&](int block, int) {
+      sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
     });
-    stepWorkers.stage(blocksOf(contactBundles.bundleCount(), kBundlesPerBlock * 8),
-                      [&](int block, int) {
-                        const int begin = block * kBundlesPerBlock * 8;
-                        contactBundles.finishFill(
-                            begin, std::min(contactBundles.bundleCount(), begin + kBundlesPerBlock * 8),
-                            sb);
-                      });
-    for (int substep = 0; substep < substeps; ++substep) {
-      stepWorkers.stage(dynamicBlocks, [&](int block, int) {
-        sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
-      });
-      forEachJoint([&](Joint& j, SolverBody& a, SolverBody& b) {
-        prepareJoint(j, a, b, def, soft ? jointSpring : rigid, h);
-        warmStartJoint(j, a, b);
-      });
-      overColors(warmStartBundles);
-      forEachJoint([&](Joint& j, SolverBody& a, SolverBody& b) { solveJointVelocity(j, a, b, h); });
-      pass.useBias = soft;
-      pass.relax = false;
-      overColors(solveBundles);
-
-      stepWorkers.stage(bodyBlocks, [&](int block, int) {
-        sb.integratePositions(block * kBodiesPerBlock,
-                              std::min(sb.movingCount(), (block + 1) * kBodiesPerBlock), h);
-      });
-
-      // Relax: a second iteration at the new poses. For the soft step it takes back the push;
-      // for both it is what keeps warm-started sub-steps stable (with one iteration per
-      // sub-step the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
-      forEachJoint([&](Joint& j, SolverBody& a, SolverBody& b) {
-        prepareJoint(j, a, b, def, rigid, h);
-        solveJointVelocity(j, a, b, h);
-      });
-      pass.useBias = false;
-      pass.relax = true;
-      overColors(solveBundles);
-    }
+    overColors(prepareAndWarmStart, kernel(warmStartBundles), pass, false);
+    pass.useBias = soft;
     pass.relax = false;
-    overColors(restituteBundles);
-    stepWorkers.stage(contactBlocks, [&](int block, int) {
-      const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-      contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
+    overColors(solveJoints, kernel(solveBundles), pass, false);
+
+    stepWorkers.stage(bodyBlocks, [&](int block, int) {
+      sb.integratePositions(block * kBodiesPerBlock,
+                            std::min(sb.movingCount(), (block + 1) * kBodiesPerBlock), h);
     });
-    if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
+
+    // Relax: a second iteration at the new poses. For the soft step it takes back the push;
+    // for both it is what keeps warm-started sub-steps stable (with one iteration per sub-step
+    // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
+    pass.useBias = false;
+    pass.relax = true;
+    overColors(prepareAndRelax, kernel(solveBundles), pass, false);
   }
+  pass.relax = false;
+  overColors(nullptr, kernel(restituteBundles), pass, false);
+  stepWorkers.stage(contactBlocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
+  });
+  if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
+  for (const Joint& joint : solverJoints) joints.items[joint.id.index] = joint;
   stepWorkers.stage(bodyBlocks, [&](int block, int) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
   });
@@ -179,32 +217,29 @@ void WorldImpl::solveSubsteps(double dt) {
 }
 
 // NGS passes after the sub-steps: push what still overlaps apart by moving the bodies (no
-// velocity, so no energy added), until every overlap is within 3 slops.
-void WorldImpl::correctSubstepPositions(BundlePass pass) {
-  std::vector<double>& deepest = blockDeepest;
+// velocity, so no energy added), until every joint is within its slop and every overlap within
+// 3 slops. Each thread keeps its own verdicts: AND and min do not depend on the order.
+void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
+  const size_t workers = static_cast<size_t>(stepWorkers.threads());
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
+    workerJointsOk.assign(workers, 1);
+    workerDeepest.assign(workers, 0.0);
+    const JointOp jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
+      if (!solveJointPosition(j, a, b, def)) workerJointsOk[static_cast<size_t>(worker)] = 0;
+    };
+    const BundleOp contactPositions = [&](const BundlePass& p, int begin, int end, bool oneByOne,
+                                          int worker) {
+      double& deepest = workerDeepest[static_cast<size_t>(worker)];
+      deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
+    };
+    overColors(jointPositions, contactPositions, pass, true);
     bool jointsOk = true;
-    forEachJoint(
-        [&](Joint& j, SolverBody& a, SolverBody& b) { jointsOk &= solveJointPosition(j, a, b, def); },
-        true);
-    double worst = 0.0;
-    for (int color = 0; color < contactBundles.colorCount(); ++color) {
-      const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
-      const int blocks = blocksOf(end - first, kBundlesPerBlock);
-      deepest.assign(static_cast<size_t>(blocks), 0.0);
-      stepWorkers.stage(blocks, [&](int block, int worker) {
-        BundlePass mine = pass;
-        mine.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(worker) * kStateDoubles);
-        const int begin = first + block * kBundlesPerBlock;
-        deepest[block] =
-            solveBundlePositions(mine, begin, std::min(end, begin + kBundlesPerBlock), false);
-      });
-      for (const double d : deepest) worst = std::min(worst, d);
+    double deepest = 0.0;
+    for (size_t w = 0; w < workers; ++w) {
+      jointsOk = jointsOk && workerJointsOk[w];
+      deepest = std::min(deepest, workerDeepest[w]);
     }
-    pass.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(0) * kStateDoubles);
-    worst = std::min(worst, solveBundlePositions(pass, contactBundles.overflowBegin(),
-                                                 contactBundles.bundleCount(), true));
-    if (jointsOk && worst >= -3.0 * def.linearSlop) break;
+    if (jointsOk && deepest >= -3.0 * def.linearSlop) break;
   }
 }
 
