@@ -33,9 +33,11 @@ struct UrdfJointInfo {
 };
 
 /// The frame of a link that is no body of its own, for tf: a link merged into a body by a fixed
-/// joint, the root link named "world", and links fixed to it without collision geometry. Its
-/// offset along the plane's normal is dropped, as for the bodies, so every frame lies in the
-/// plane where the simulation has it; its rotation is the URDF's, roll and pitch included.
+/// joint, the root link named "world", and links fixed to it without collision geometry. Only
+/// bodies lie in the plane (their top link's offset along the normal is dropped); such a link
+/// keeps its URDF pose relative to its body (or to the world link), offset along the normal and
+/// roll and pitch included, so that RViz's RobotModel draws each rigid part as the URDF builds
+/// it.
 struct UrdfFrame {
   std::string name;  ///< "model_name/link"
   /// The body it is fixed to ("model_name/top_link"); empty: fixed to the world.

@@ -199,20 +199,19 @@ class Projector {
     return pose;
   }
 
-  // A link frame for tf, moved along the normal into the plane. A name that cannot be a frame
-  // leaves the link off tf with a warning: merged links never had to be named as frames.
-  void addFrame(const std::string& link, const std::string& body, Eigen::Isometry3d pose) {
+  // A link frame for tf. A name that cannot be a frame leaves the link off tf with a warning:
+  // merged links never had to be named as frames.
+  void addFrame(const std::string& link, const std::string& body, const Eigen::Isometry3d& pose) {
     if (!scene_detail::checkName(link).empty()) {
       out_->warnings.push_back("link " + quotedName(link) + ": not on tf, its name " +
                                scene_detail::checkName(link) + " (names become tf frames)");
       return;
     }
-    pose.translation() -= plane_.normal * plane_.normal.dot(pose.translation());
     out_->frames.push_back({placement_.modelName + "/" + link, body, pose});
   }
 
   // The frames of a group's links: fixed to its body, or, for a static group left without a
-  // body, to the world.
+  // body, to the world (from the world link, which lies at the placement).
   void addGroupFrames(const Group& group) {
     if (!group.skipped) {
       const std::string body = placement_.modelName + "/" + group.top->name;

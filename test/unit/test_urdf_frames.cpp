@@ -1,6 +1,6 @@
 // URDF link frames for tf: links merged into a body by fixed joints as offsets from it, the root
-// "world" link at the model's placement, static links without geometry from the world; offsets
-// along the plane's normal dropped, rotations kept.
+// "world" link at the model's placement, static links without geometry from the world. Bodies lie
+// in the plane; these frames keep their URDF poses relative to them, along the normal too.
 #include <impulse2d/urdf.hpp>
 
 #include <gtest/gtest.h>
@@ -68,16 +68,16 @@ TEST(UrdfFrames, MergedLinksAreOffsetsFromTheirBody) {
   EXPECT_TRUE(r.col(0).isApprox(-Eigen::Vector3d::UnitY(), kRpyTol)) << r;
 }
 
-TEST(UrdfFrames, OffsetsAlongTheNormalAreDropped) {
+TEST(UrdfFrames, OffsetsFromTheBodyAlongTheNormalAreKept) {
   const std::string xml = R"(<robot name="r">
   <link name="base"><collision><geometry><cylinder radius="0.2" length="0.1"/></geometry></collision></link>
   <joint name="mount" type="fixed"><parent link="base"/><child link="mast"/>
     <origin xyz="0.1 0.3 0.4" rpy="0 0 0.5"/></joint>
   <link name="mast"/>
 </robot>)";
-  // Top-down (normal 3D z): the mast's 0.4 up is dropped, its yaw kept.
+  // Top-down (normal 3D z): the base's body lies in the plane, the mast 0.4 above it.
   const UrdfModel xy = load(xml, "xy");
-  expectTranslation(frameNamed(xy, "m/mast"), 0.1, 0.3, 0.0);
+  expectTranslation(frameNamed(xy, "m/mast"), 0.1, 0.3, 0.4);
   EXPECT_TRUE(frameNamed(xy, "m/mast")
                   .pose.linear()
                   .isApprox(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix()));
@@ -100,11 +100,11 @@ TEST(UrdfFrames, TheWorldLinkAndStaticLinksWithoutGeometryAreFixedToTheWorld) {
   expectTranslation(world, 2.0, 0.0, 3.0);
   EXPECT_TRUE(world.pose.linear().isApprox(
       Eigen::AngleAxisd(0.5, -Eigen::Vector3d::UnitY()).toRotationMatrix()));
-  // The marker, 2 m up the model's z and 0.7 along the normal: (0, 2) in the model's plane,
-  // turned 0.5 rad and moved to (2, 3); the 0.7 is dropped.
+  // The marker, 2 m up the model's z and 0.7 along its y (the normal): (0, 2) in the model's
+  // plane, turned 0.5 rad and moved to (2, 3), 0.7 off the plane.
   const UrdfFrame& marker = frameNamed(model, "m/marker");
   EXPECT_EQ(marker.body, "");
-  expectTranslation(marker, 2.0 - 2.0 * std::sin(0.5), 0.0, 3.0 + 2.0 * std::cos(0.5));
+  expectTranslation(marker, 2.0 - 2.0 * std::sin(0.5), 0.7, 3.0 + 2.0 * std::cos(0.5));
   // A merged link whose name cannot be a frame stays off tf, with a warning.
   for (const UrdfFrame& frame : model.frames) EXPECT_NE(frame.name, "m/tool.001");
   bool warned = false;
