@@ -94,7 +94,8 @@ class World {
   /// skipped; no hit when either end is not finite.
   RayHit rayCast(const Vec2& from, const Vec2& to, const RayFilter& filter = RayFilter()) const;
   /// A fan of segments from one origin, as a scanner casts them: (*hits)[i] is rayCast(origin,
-  /// ends[i], filter). The vector is reused, so a scanner allocates nothing once warm.
+  /// ends[i], filter), bit for bit, computed at once: the shapes within reach are gathered once
+  /// and each segment tries only those in its direction, nearest first (ray_fan.cpp).
   void rayCastFan(const Vec2& origin, const std::vector<Vec2>& ends, const RayFilter& filter,
                   std::vector<RayHit>* hits) const;
   /// The bodies with a shape containing the point (boundary included), in slot order.

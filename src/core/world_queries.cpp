@@ -1,34 +1,19 @@
 // World's queries: ray casts and the bodies at a point or in a box. The AABB tree narrows the
-// shapes down; ray_cast.cpp tests each candidate exactly.
-#include "world_impl.hpp"
-
-#include <impulse2d/queries.hpp>
+// shapes down; ray_cast.cpp tests each candidate exactly; ray_fan.cpp casts fans.
+#include "world_rays.hpp"
 
 #include <algorithm>
 
 namespace impulse2d {
-namespace {
 
-// A proxy's user data, as createProxies (world.cpp) packs it: body slot << 8 | shape index.
-int slotOf(int64_t userData) { return static_cast<int>(userData >> 8); }
-int shapeOf(int64_t userData) { return static_cast<int>(userData & 0xff); }
-
-// Equal fractions go to the lower body slot, then the lower shape index, so the answer does not
-// depend on the order the tree hands the shapes over.
-bool nearer(double fraction, int slot, int shape, const RayHit& best) {
-  if (!best.hit()) return true;
-  if (fraction != best.fraction) return fraction < best.fraction;
-  return slot != best.body.index ? slot < best.body.index : shape < best.shape;
-}
-
-RayHit castOne(const WorldImpl& w, const Vec2& from, const Vec2& to, const RayFilter& filter) {
+RayHit castRay(const WorldImpl& w, const Vec2& from, const Vec2& to, const RayFilter& filter) {
   RayHit best;
   w.tree.rayCast(from, to, 1.0, [&](int proxy, double maxFraction) {
-    const int slot = slotOf(w.tree.userData(proxy)), shape = shapeOf(w.tree.userData(proxy));
+    const int slot = proxySlot(w.tree.userData(proxy)), shape = proxyShape(w.tree.userData(proxy));
     const Body& body = w.bodies.items[slot];
     if (filter.ignores(body.id)) return maxFraction;
     const ShapeRayHit hit = rayCastShape(body.shapes[shape], body.xf, from, to);
-    if (!hit.hit() || hit.fraction > maxFraction || !nearer(hit.fraction, slot, shape, best)) {
+    if (!hit.hit() || hit.fraction > maxFraction || !nearerHit(hit.fraction, slot, shape, best)) {
       return maxFraction;
     }
     best.body = body.id;
@@ -41,15 +26,17 @@ RayHit castOne(const WorldImpl& w, const Vec2& from, const Vec2& to, const RayFi
   return best;
 }
 
+namespace {
+
 // The bodies of the shapes `accept` takes among those whose fat boxes overlap `box`, each once,
 // in slot order.
 template <class Accept>
 std::vector<BodyId> bodiesIn(const WorldImpl& w, const Aabb& box, Accept&& accept) {
   std::vector<int> slots;
   w.tree.query(box, [&](int proxy) {
-    const int slot = slotOf(w.tree.userData(proxy));
+    const int slot = proxySlot(w.tree.userData(proxy));
     const Body& body = w.bodies.items[slot];
-    if (accept(body.shapes[shapeOf(w.tree.userData(proxy))], body.xf)) slots.push_back(slot);
+    if (accept(body.shapes[proxyShape(w.tree.userData(proxy))], body.xf)) slots.push_back(slot);
   });
   std::sort(slots.begin(), slots.end());
   slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
@@ -63,16 +50,16 @@ std::vector<BodyId> bodiesIn(const WorldImpl& w, const Aabb& box, Accept&& accep
 
 RayHit World::rayCast(const Vec2& from, const Vec2& to, const RayFilter& filter) const {
   if (!isFinite(from) || !isFinite(to)) return RayHit();
-  return castOne(*impl_, from, to, filter);
+  return castRay(*impl_, from, to, filter);
 }
 
 void World::rayCastFan(const Vec2& origin, const std::vector<Vec2>& ends, const RayFilter& filter,
                        std::vector<RayHit>* hits) const {
-  hits->assign(ends.size(), RayHit());
-  if (!isFinite(origin)) return;
-  for (size_t i = 0; i < ends.size(); ++i) {
-    if (isFinite(ends[i])) (*hits)[i] = castOne(*impl_, origin, ends[i], filter);
+  if (!isFinite(origin)) {
+    hits->assign(ends.size(), RayHit());
+    return;
   }
+  castFan(*impl_, origin, ends, filter, hits);
 }
 
 std::vector<BodyId> World::queryPoint(const Vec2& point) const {

@@ -124,6 +124,65 @@ TEST(WorldRayCast, MatchesTestingEveryShapeAndTheFanMatchesSingleRays) {
     EXPECT_EQ(fan[i].fraction, single.fraction) << "ray " << i;
   }
   EXPECT_GT(hits, 300);  // the test saw hits, not only misses
+
+  // Fans of every length from inside a body (ignored or not), from the edge of one, across the
+  // -pi/pi seam, with a beam of no length and one that is not finite: as single rays, bit for bit.
+  std::uniform_real_distribution<double> length(0.0, 30.0);
+  const BodyId inside = world.bodies()[7];
+  const Body& host = world.body(inside);
+  const Vec2 edge = host.xf.apply(host.shapes[0].type == ShapeType::Circle
+                                      ? Vec2(host.shapes[0].circle.radius, 0.0)
+                                      : host.shapes[0].polygon.vertices[0]);
+  for (const Vec2& from : {host.center, edge, Vec2(-15.0, 12.0)}) {
+    for (const bool ignoreHost : {false, true}) {
+      RayFilter filter;
+      if (ignoreHost) filter.ignore.push_back(inside);
+      std::vector<Vec2> spokes;
+      for (int i = 0; i < 500; ++i) {
+        const double a = kPi - 2.0 * kPi * i / 499.0;  // from pi down to -pi
+        spokes.push_back(from + length(rng) * Vec2(std::cos(a), std::sin(a)));
+      }
+      spokes.push_back(from);
+      spokes.push_back(Vec2(NAN, 0.0));
+      world.rayCastFan(from, spokes, filter, &fan);
+      for (size_t i = 0; i < spokes.size(); ++i) {
+        const RayHit single = world.rayCast(from, spokes[i], filter);
+        ASSERT_EQ(fan[i].body, single.body) << "spoke " << i;
+        ASSERT_EQ(fan[i].shape, single.shape) << "spoke " << i;
+        ASSERT_EQ(fan[i].fraction, single.fraction) << "spoke " << i;
+        ASSERT_EQ(fan[i].point, single.point) << "spoke " << i;
+        ASSERT_EQ(fan[i].normal, single.normal) << "spoke " << i;
+      }
+    }
+  }
+}
+
+// Beams aimed exactly at the corners of boxes, where a shape's bounding box (which the fan sorts
+// shapes into beams by) is the shape itself: the fan must not lose them.
+TEST(WorldRayCast, FanBeamsThroughBoxCornersHitAsSingleRays) {
+  World world;
+  std::vector<Vec2> ends;
+  const Vec2 origin(0.3, -0.2);
+  for (const Vec2& center : {Vec2(5, 0), Vec2(-3, 4), Vec2(0.5, -6), Vec2(-7, -0.2)}) {
+    addBox(world, "box" + std::to_string(ends.size()), center, 2.0, 1.0, BodyType::Static);
+    for (const Vec2& corner :
+         {Vec2(-1.0, -0.5), Vec2(1.0, -0.5), Vec2(1.0, 0.5), Vec2(-1.0, 0.5)}) {
+      const Vec2 aim = center + corner - origin;
+      for (const double turn : {-1e-12, 0.0, 1e-12}) {
+        ends.push_back(origin + 3.0 * Rot(turn).apply(aim));
+      }
+    }
+  }
+  std::vector<RayHit> fan;
+  world.rayCastFan(origin, ends, RayFilter(), &fan);
+  int hits = 0;
+  for (size_t i = 0; i < ends.size(); ++i) {
+    const RayHit single = world.rayCast(origin, ends[i]);
+    EXPECT_EQ(fan[i].body, single.body) << "beam " << i;
+    EXPECT_EQ(fan[i].fraction, single.fraction) << "beam " << i;
+    hits += single.hit() ? 1 : 0;
+  }
+  EXPECT_GE(hits, 16);  // every corner seen from outside is hit by its exact beam at least
 }
 
 TEST(WorldQueries, BodiesAtAPoint) {
