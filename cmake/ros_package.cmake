@@ -13,7 +13,7 @@ generate_messages(DEPENDENCIES geometry_msgs std_msgs)
 
 catkin_package(
   INCLUDE_DIRS include
-  LIBRARIES impulse2d_core impulse2d_scene impulse2d_devices impulse2d_urdf
+  LIBRARIES impulse2d_core impulse2d_devices impulse2d_scene impulse2d_urdf
   CATKIN_DEPENDS geometry_msgs message_runtime nav_msgs nodelet roscpp rosgraph_msgs sensor_msgs
     std_msgs std_srvs visualization_msgs
 )

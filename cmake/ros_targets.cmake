@@ -63,7 +63,7 @@ if(CATKIN_ENABLE_TESTING)
   roslaunch_add_file_check(launch/demo.launch rviz:=false)
 endif()
 
-install(TARGETS impulse2d_core impulse2d_scene impulse2d_devices impulse2d_sim
+install(TARGETS impulse2d_core impulse2d_devices impulse2d_scene impulse2d_sim
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
