@@ -39,8 +39,8 @@ BodyDef shapeBody(const std::string& name, BodyType type, const Vec2& position, 
   return def;
 }
 
-// The room: 4 walls, then pillars, crates and barrels on a jittered grid, clear of the robot's
-// circle (radius 3 m about the centre). The same every time (seeded).
+// The room: 4 walls, then pillars, crates and barrels spread over a jittered grid, clear of the
+// robot's circle (radius 3 m about the centre). The same every time (seeded).
 void buildRoom(World& world) {
   auto box = [](double w, double h) {
     ShapeDef s;
@@ -64,23 +64,25 @@ void buildRoom(World& world) {
       shapeBody("wall_w", BodyType::Static, Vec2(-kHalfRoom - 0.1, 0), 0, box(0.2, wall)));
   world.createBody(
       shapeBody("wall_e", BodyType::Static, Vec2(kHalfRoom + 0.1, 0), 0, box(0.2, wall)));
+  // Grid points clear of the robot's circle, then an even pick of as many as are wanted.
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3), turn(-kPi, kPi);
-  int made = 4;
-  for (double y = -kHalfRoom + 0.8; y < kHalfRoom - 0.5 && made < kBodies; y += 1.1) {
-    for (double x = -kHalfRoom + 0.8; x < kHalfRoom - 0.5 && made < kBodies; x += 1.1) {
-      const Vec2 at(x + jitter(rng), y + jitter(rng));
-      if (at.norm() < 3.0) continue;
-      const std::string name = "b" + std::to_string(made);
-      const int kind = made % 10;
-      if (kind == 0) {
-        world.createBody(shapeBody(name, BodyType::Static, at, 0, circle(0.25)));  // pillar
-      } else if (kind < 8) {
-        world.createBody(shapeBody(name, BodyType::Dynamic, at, turn(rng), box(0.5, 0.5)));
-      } else {
-        world.createBody(shapeBody(name, BodyType::Dynamic, at, 0, circle(0.2)));  // barrel
-      }
-      ++made;
+  std::vector<Vec2> spots;
+  for (double y = -kHalfRoom + 0.8; y < kHalfRoom - 0.5; y += 1.1) {
+    for (double x = -kHalfRoom + 0.8; x < kHalfRoom - 0.5; x += 1.1) {
+      if (Vec2(x, y).norm() >= 3.4) spots.push_back(Vec2(x, y));
+    }
+  }
+  const int wanted = kBodies - 4;
+  for (int i = 0; i < wanted; ++i) {
+    const Vec2 at = spots[i * spots.size() / wanted] + Vec2(jitter(rng), jitter(rng));
+    const std::string name = "b" + std::to_string(i);
+    if (i % 10 == 0) {
+      world.createBody(shapeBody(name, BodyType::Static, at, 0, circle(0.25)));  // pillar
+    } else if (i % 10 < 8) {
+      world.createBody(shapeBody(name, BodyType::Dynamic, at, turn(rng), box(0.5, 0.5)));
+    } else {
+      world.createBody(shapeBody(name, BodyType::Dynamic, at, 0, circle(0.2)));  // barrel
     }
   }
 }

@@ -103,8 +103,8 @@ bool WorldNode::rayCast(RayCast::Request& req, RayCast::Response& res) {
   res.body = answer.body;
   res.point.x = answer.point.x();
   res.point.y = answer.point.y();
-  res.normal.x = answer.normal.x();
-  res.normal.y = answer.normal.y();
+  res.normal.x = answer.normal.x() + 0.0;  // + 0.0: no -0.0 for readers
+  res.normal.y = answer.normal.y() + 0.0;
   res.fraction = answer.fraction;
   res.distance = answer.fraction * std::hypot(req.end.x - req.start.x, req.end.y - req.start.y);
   return true;
