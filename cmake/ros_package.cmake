@@ -5,10 +5,15 @@ find_package(catkin REQUIRED COMPONENTS
 
 add_message_files(DIRECTORY msg FILES
   Body.msg Contact.msg ContactArray.msg Joint.msg JointCommand.msg Shape.msg)
+# ~removed_bodies
+add_message_files(DIRECTORY msg FILES RemovedBodies.msg RemovedBody.msg)
 add_service_files(DIRECTORY srv FILES
   ApplyWrench.srv CreateJoint.srv DeleteBody.srv DeleteJoint.srv GetBodyState.srv LoadScene.srv
-  QueryPoint.srv RayCast.srv SetBodyState.srv SetJointMotor.srv SpawnBody.srv SpawnUrdf.srv
-  Step.srv)
+  SetBodyState.srv SetJointMotor.srv SpawnBody.srv SpawnUrdf.srv Step.srv)
+# ~get_body_properties
+add_service_files(DIRECTORY srv FILES GetBodyProperties.srv)
+# ~ray_cast, ~query_point
+add_service_files(DIRECTORY srv FILES QueryPoint.srv RayCast.srv)
 generate_messages(DEPENDENCIES geometry_msgs std_msgs)
 
 catkin_package(

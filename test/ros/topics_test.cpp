@@ -9,9 +9,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include <atomic>
 #include <cmath>
-#include <mutex>
 
 namespace impulse2d_test {
 namespace {
