@@ -17,7 +17,7 @@ Transform relativeOf(const Body& a, const Body& b) { return a.xf.inverseTimes(b.
 bool barelyMoved(const Transform& now, const Transform& base, const Body& b) {
   const double dx = now.p.x() - base.p.x(), dy = now.p.y() - base.p.y();
   const double turn = std::abs(base.q.c * now.q.s - base.q.s * now.q.c);  // sin of the turn
-  const double reach = b.maxExtent + std::hypot(b.localCenter.x(), b.localCenter.y());
+  const double reach = b.maxExtent + b.localCenter.norm();
   return std::sqrt(dx * dx + dy * dy) + turn * reach <= kFollowDistance;
 }
 
@@ -51,11 +51,15 @@ void follow(Contact& contact, const Body& a, const Body& b) {
 }  // namespace
 
 void updateContact(Contact& contact, const Body& a, const Body& b, double speculativeDistance,
-                   bool warmStarting) {
+                   double timeStep, bool warmStarting) {
   if (contact.following && barelyMoved(relativeOf(a, b), contact.baseRelative, b)) {
     follow(contact, a, b);  // the same points: the impulses stay theirs
     return;
   }
+  const double closing = (b.linearVelocity - a.linearVelocity).norm() +
+                         std::abs(a.angularVelocity) * a.maxExtent +
+                         std::abs(b.angularVelocity) * b.maxExtent;
+  speculativeDistance += timeStep * closing;
   const Manifold old = contact.manifold;
   const double oldNormal[2] = {contact.normalImpulse[0], contact.normalImpulse[1]};
   const double oldTangent[2] = {contact.tangentImpulse[0], contact.tangentImpulse[1]};

@@ -54,7 +54,10 @@ double mixRestitution(double a, double b);
 /// Recomputes the manifold from the bodies' current poses and carries over the impulses of points
 /// whose feature ids match the last step's; or, while B has moved less than kFollowDistance
 /// relative to A since the manifold was computed, follows its points with the bodies instead.
+/// The manifold keeps points up to `speculativeDistance` apart, plus, when `timeStep` > 0, as far
+/// as the two bodies can close in one step at their current speeds: a body fast enough to cross
+/// the margin in a step is caught at the surface instead of a step's travel inside it.
 void updateContact(Contact& contact, const Body& a, const Body& b, double speculativeDistance,
-                   bool warmStarting);
+                   double timeStep, bool warmStarting);
 
 }  // namespace impulse2d

@@ -155,7 +155,6 @@ struct WorldImpl {
   void updateBroadPhase();
   void findNewContacts();
   void updateContacts();
-  double speculativeMargin(const Body& a, const Body& b) const;
   void integrateVelocities(double dt);
   void solve(double dt);
   void solveSubsteps(double dt);

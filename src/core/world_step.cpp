@@ -44,7 +44,7 @@ namespace {
 bool movedLessThanMargin(const Body& body) {
   const double dx = body.xf.p.x() - body.proxyXf.p.x(), dy = body.xf.p.y() - body.proxyXf.p.y();
   const double cosTurn = body.proxyXf.q.c * body.xf.q.c + body.proxyXf.q.s * body.xf.q.s;
-  const double reach = body.maxExtent + std::hypot(body.localCenter.x(), body.localCenter.y());
+  const double reach = body.maxExtent + body.localCenter.norm();
   const double chord = reach * std::sqrt(std::max(0.0, 2.0 - 2.0 * cosTurn));
   return std::sqrt(dx * dx + dy * dy) + chord < 0.5 * kAabbMargin;
 }
@@ -151,7 +151,7 @@ void WorldImpl::updateContacts() {
         fate = kDrop;
       } else if (isMoving(a) || isMoving(b)) {
         // Two bodies that cannot move relative to each other keep last step's manifold.
-        updateContact(contact, a, b, speculativeMargin(a, b), def.warmStarting);
+        updateContact(contact, a, b, def.speculativeDistance, def.timeStep, def.warmStarting);
         // Something moving now touches a sleeper: it wakes before the solver runs.
         if (contact.manifold.pointCount > 0) {
           if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) fate |= kWakeB;
@@ -183,15 +183,6 @@ void WorldImpl::updateContacts() {
   movedProxies.clear();
 }
 
-// Points farther apart than this are left out of the manifold. Beyond the fixed margin, as far as
-// the pair can close in one step at its current speeds, so a body fast enough to cross the
-// margin in a step is caught at the surface instead of a step's travel inside it.
-double WorldImpl::speculativeMargin(const Body& a, const Body& b) const {
-  const double closing = (b.linearVelocity - a.linearVelocity).norm() +
-                         std::abs(a.angularVelocity) * a.maxExtent +
-                         std::abs(b.angularVelocity) * b.maxExtent;
-  return def.speculativeDistance + def.timeStep * closing;
-}
 
 void WorldImpl::integrateVelocities(double dt) {
   // Faster than this, a body crosses the whole world within the step: it cannot be simulated.

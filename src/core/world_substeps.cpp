@@ -209,7 +209,7 @@ void WorldImpl::solveSubsteps(double dt) {
     const BodyState& s = sb.state(e);
     const BodyStart& start = sb.start(e);
     const Body& body = bodies.items[start.slot];
-    const double reach = std::hypot(s.dx, s.dy) + std::abs(s.turned) * body.maxExtent;
+    const double reach = std::sqrt(s.dx * s.dx + s.dy * s.dy) + std::abs(s.turned) * body.maxExtent;
     if (reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
       fastBodies.push_back({start.slot, sb.sim(e).center0, start.angle0});
     }

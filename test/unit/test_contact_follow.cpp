@@ -53,11 +53,11 @@ TEST(ContactFollow, FollowedManifoldMatchesTheComputedOne) {
     placePair(rng, &a, &b);
     Contact contact;
     contact.shapeA = contact.shapeB = 0;
-    updateContact(contact, a, b, 0.02, true);  // computes and remembers
+    updateContact(contact, a, b, 0.02, 0.0, true);  // computes and remembers
     ASSERT_GT(contact.manifold.pointCount, 0);
     for (int step = 0; step < 5; ++step) {  // several small moves, all within the distance
       nudge(rng, &b, 0.9 * kFollowDistance / 5.0);
-      updateContact(contact, a, b, 0.02, true);
+      updateContact(contact, a, b, 0.02, 0.0, true);
       const Manifold fresh = collideShapes(a.shapes[0], a.xf, b.shapes[0], b.xf, 0.02);
       ASSERT_EQ(contact.manifold.pointCount, fresh.pointCount) << "trial " << trial;
       worstNormal = std::max(worstNormal, (contact.manifold.normal - fresh.normal).norm());
@@ -88,10 +88,10 @@ TEST(ContactFollow, ALargerMoveComputesTheManifoldAgain) {
   placePair(rng, &a, &b);
   Contact contact;
   contact.shapeA = contact.shapeB = 0;
-  updateContact(contact, a, b, 0.02, true);
+  updateContact(contact, a, b, 0.02, 0.0, true);
   nudge(rng, &b, 20.0 * kFollowDistance);
   b.xf.p.x() += 3.0 * kFollowDistance;  // beyond, whatever the random part did
-  updateContact(contact, a, b, 0.02, true);
+  updateContact(contact, a, b, 0.02, 0.0, true);
   const Manifold fresh = collideShapes(a.shapes[0], a.xf, b.shapes[0], b.xf, 0.02);
   ASSERT_EQ(contact.manifold.pointCount, fresh.pointCount);
   for (int i = 0; i < fresh.pointCount; ++i) {
