@@ -146,15 +146,16 @@ class JUnitResult(unittest.TextTestResult):
         self.outcomes.append((test.id(), self._exc_info_to_string(err, test)))
 
 
-def main():
+def run_with_junit(module, suite_name):
+    """Runs the module's tests; with `--junit FILE` on the command line writes them as JUnit."""
     junit = sys.argv[sys.argv.index("--junit") + 1] if "--junit" in sys.argv else None
-    suite = unittest.defaultTestLoader.loadTestsFromModule(sys.modules[__name__])
+    suite = unittest.defaultTestLoader.loadTestsFromModule(module)
     result = unittest.TextTestRunner(resultclass=JUnitResult, verbosity=1).run(suite)
     if junit:
-        root = ET.Element("testsuite", name="doc_examples_unit", tests=str(len(result.outcomes)),
+        root = ET.Element("testsuite", name=suite_name, tests=str(len(result.outcomes)),
                           failures=str(sum(1 for _, f in result.outcomes if f)))
         for name, failure in result.outcomes:
-            case = ET.SubElement(root, "testcase", classname="doc_examples_unit", name=name)
+            case = ET.SubElement(root, "testcase", classname=suite_name, name=name)
             if failure:
                 ET.SubElement(case, "failure", message=failure.splitlines()[-1]).text = failure
         ET.ElementTree(root).write(junit, encoding="utf-8", xml_declaration=True)
@@ -162,4 +163,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_with_junit(sys.modules[__name__], "doc_examples_unit"))
