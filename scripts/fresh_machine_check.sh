@@ -181,14 +181,25 @@ in_root "$LOGS/demo.log" "$DEMO_TIMEOUT" "
   set -m  # the demo in a process group of its own, where SIGINT reaches it as Ctrl-C would
   scripts/demo.sh &
   demo=\$!
+  stop_demo() {
+    kill -INT -- -\$demo 2>/dev/null
+    for i in \$(seq 40); do kill -0 \$demo 2>/dev/null || return 0; sleep 0.5; done
+    echo 'scripts/demo.sh did not stop within 20 s of SIGINT'
+    kill -KILL -- -\$demo
+    return 1
+  }
+  trap stop_demo EXIT
+  trap 'exit 143' TERM
   until command -v rosservice >/dev/null && rosservice list 2>/dev/null | grep -qx /impulse2d/get_body_state; do
     kill -0 \$demo 2>/dev/null || { echo 'scripts/demo.sh ended before the world came up'; exit 1; }
     sleep 2
   done
-  echo \"=== the demo's world answers on \$ROS_MASTER_URI: \$(rosservice call /impulse2d/get_body_state ground | head -n 2 | tr '\n' ' ')\"
-  kill -INT -- -\$demo
-  for i in \$(seq 40); do kill -0 \$demo 2>/dev/null || break; sleep 0.5; done
-  ! kill -0 \$demo 2>/dev/null || { echo 'scripts/demo.sh did not stop on SIGINT'; exit 1; }"
+  source \${IMPULSE2D_WS:-~/.cache/impulse2d_ws}/devel/setup.bash  # impulse2d's types
+  answer=\"\$(rosservice call /impulse2d/get_body_state ground)\"
+  echo \"=== the demo's world on \$ROS_MASTER_URI answers: \$(echo \"\$answer\" | head -n 3 | tr '\n' ' ')\"
+  trap - EXIT
+  stop_demo || exit 1
+  echo \"\$answer\" | grep -qx 'success: True'"
 step_result "scripts/demo.sh (installs, builds, the demo starts)" $? "$started" "$LOGS/demo.log"
 
 # 2. scripts/test.sh, as written in the README (its own workspace, built from scratch).
