@@ -67,8 +67,10 @@ def run_document(path, log_dir, list_only, timeout):
                     cases.append(_report(Case(where, "save as " + block.save_as, failure)))
             for command in block.commands:
                 cases.append(_report(_run_command(session, command)))
+                cases += _world_failures(session)
     finally:
         removed = session.close()
+        cases += _world_failures(session)
         if removed:
             print("     %s: removed what it created: %s" % (shown, ", ".join(removed)), flush=True)
     return cases
@@ -76,7 +78,7 @@ def run_document(path, log_dir, list_only, timeout):
 
 def _run_command(session, command):
     if is_world_line(command.text):
-        result = session.start_world(command.text)
+        result = session.start_world(command.text, command.where())
         return Case(command.where(), command.text, result.failure, result.seconds)
     result = session.run(command.text)
     output = result.stdout + ("\n[stderr]\n" + result.stderr if result.stderr.strip() else "")
@@ -85,6 +87,14 @@ def _run_command(session, command):
     found = checks.problems(command.text, result.status, result.stdout, result.stderr,
                             command.expected)
     return Case(command.where(), command.text, "; ".join(found) or None, result.seconds, output)
+
+
+def _world_failures(session):
+    """A failed case for each world line that showed trouble by the time it was stopped."""
+    found = [_report(Case(where, "(until stopped) " + text, why))
+             for where, text, why in session.world_failures]
+    session.world_failures = []
+    return found
 
 
 def _report(case):

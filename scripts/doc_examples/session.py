@@ -8,7 +8,9 @@
   as in a first terminal: it is started in the background on a master of its own (a new free
   port; roslaunch starts the master), and the next command waits until a world answers there
   (a `~get_body_state` service is advertised). A later world line first stops the earlier one.
-  The shell's ROS_MASTER_URI then points at the newest world.
+  The shell's ROS_MASTER_URI then points at the newest world. A world line fails when its
+  output shows a node that died or an `[ERROR]` line, up to when it is stopped (so RViz
+  without a display, or a scene the node refuses, is not taken for a working example).
 - A line ending in `&` runs in the background; it is stopped when a new world line starts and
   at the end of the document.
 - Every command has a time limit; after one runs over, the rest of the document is not run.
@@ -16,6 +18,7 @@
   on failure, and the files the document created in its folder are removed.
 """
 import os
+import re
 import select
 import shlex
 import shutil
@@ -68,6 +71,8 @@ class Session:
         self.command_timeout, self.world_timeout = command_timeout, world_timeout
         self.count = 0
         self.world_pid = None
+        self.world_log = None
+        self.world_failures = []  # (where, text, why) of world lines found broken when stopped
         self.broken = None  # why the rest of the document cannot run
         self._buffer = b""  # what the shell printed and _wait_done has not read yet
         self.entries_before = set(os.listdir(cwd))
@@ -105,13 +110,15 @@ class Session:
                           % self.command_timeout, seconds)
         return Result(status, stdout, stderr, seconds=seconds)
 
-    def start_world(self, text):
-        """Starts a world line in the background and waits until a world answers on its master."""
+    def start_world(self, text, where=""):
+        """Starts a world line in the background and waits until a world answers on its master;
+        where (its place in the document) names it if it shows trouble later."""
         if self.broken:
             return Result(None, failure="not run: " + self.broken)
         self.stop_background()
         self.count += 1
         log = os.path.join(self.log_dir, "%03d.world.log" % self.count)
+        self.world_log, self.world_text, self.world_where = log, text, where
         self.master_uri = "http://127.0.0.1:%d" % free_port()
         started = time.monotonic()
         self._send("export ROS_MASTER_URI=%s\n{ %s\n} >%s 2>&1 </dev/null &\nprintf '\\n%s %%d\\n' \"$!\"\n"
@@ -123,6 +130,8 @@ class Session:
             failure = self.broken
         else:
             failure = self._wait_world(log)
+        if failure:
+            self.world_log = None  # reported once is enough
         return Result(0 if failure is None else 1, _read(log), "", failure, time.monotonic() - started)
 
     def _wait_world(self, log):
@@ -134,7 +143,7 @@ class Session:
             try:
                 services = master.getSystemState()[2]
                 if any(name.endswith("/get_body_state") for name, _ in services):
-                    return None
+                    return _launch_trouble(_read(log))
             except (OSError, rosgraph.MasterException):
                 pass  # no master yet
             time.sleep(POLL)
@@ -153,11 +162,15 @@ class Session:
     # --- stopping -------------------------------------------------------------------------
     def stop_background(self):
         """Stops the world line and the background jobs, as Ctrl-C in their terminals would."""
+        if self.world_log:
+            trouble = _launch_trouble(_read(self.world_log))
+            if trouble:
+                self.world_failures.append((self.world_where, self.world_text, "while it ran: " + trouble))
         jobs = [pid for pid in _children(self.shell.pid)]
         if self.world_pid and self.world_pid not in jobs and _alive(self.world_pid):
             jobs.append(self.world_pid)
         _stop(jobs)
-        self.world_pid = None
+        self.world_pid = self.world_log = None
 
     def close(self):
         """Stops everything the document started and removes the files it created."""
@@ -229,6 +242,14 @@ def _stop(pids):
             os.kill(pid, signal.SIGKILL)
         except OSError:
             pass
+
+
+def _launch_trouble(log):
+    """What went wrong in a launch's output so far: a node that died, or an [ERROR] line."""
+    for line in log.splitlines():
+        if "process has died" in line or re.search(r"\[ERROR\]", line):
+            return re.sub(r"\x1b\[[0-9;]*m", "", line).strip()
+    return None
 
 
 def _alive(pid):

@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from doc_examples import checks  # noqa: E402
 from doc_examples.markdown import ExampleError, read_blocks  # noqa: E402
-from doc_examples.session import is_world_line  # noqa: E402
+from doc_examples.session import _launch_trouble, is_world_line  # noqa: E402
 
 
 def blocks_of(text):
@@ -124,6 +124,13 @@ class WorldLines(unittest.TestCase):
         for text in ["scripts/demo.sh --headless", "rosrun nodelet nodelet manager &",
                      "echo roslaunch", "# roslaunch x y", "rosservice call /x 'unclosed"]:
             self.assertFalse(is_world_line(text), text)
+
+
+    def test_a_launch_with_a_dead_node_or_an_error_is_in_trouble(self):
+        self.assertIsNone(_launch_trouble("process[impulse2d-2]: started with pid [12]\n"
+                                          "[ WARN] [1.0]: no ~scene parameter\n"))
+        self.assertIn("rviz-3", _launch_trouble("\x1b[1m[rviz-3] process has died [pid 1]\x1b[0m\n"))
+        self.assertIn("~scene", _launch_trouble("[ERROR] [1.0]: [/impulse2d] ~scene: bad\n"))
 
 
 class JUnitResult(unittest.TextTestResult):
