@@ -37,8 +37,9 @@ main() {
     esac
   done
   [ "$(id -u)" -eq 0 ] || die "needs root (debootstrap, chroot and mount)"
-  DIR="$(mkdir -p "$DIR" && cd "$DIR" && pwd)"
+  DIR="$(realpath -m "$DIR")"
   case "$DIR/" in "$REPO/"*) die "--dir must be outside the repository" ;; esac
+  mkdir -p "$DIR" || die "cannot make $DIR"
   ROOT="$DIR/root"
   LOGS="$DIR/logs"
 
