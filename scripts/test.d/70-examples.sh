@@ -14,6 +14,7 @@ set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 export PATH="/usr/bin:$PATH"
 results="${STAGE_RESULTS:-$(mktemp -d)}"
+mkdir -p "$results"
 status=0
 python3 "$REPO/test/examples/test_doc_examples.py" --junit "$results/doc_examples_unit.xml" || status=1
 python3 "$REPO/test/examples/test_docs_match_code.py" --junit "$results/docs_match_code.xml" || status=1
