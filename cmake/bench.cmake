@@ -33,6 +33,11 @@ else()
   message(STATUS "impulse2d_bench: Chipmunk not found (libchipmunk-dev), benchmarking without it")
 endif()
 
+# What the robot devices cost (a scan, a step with and without them), ROS-free.
+add_executable(impulse2d_device_bench bench/device_cost.cpp)
+target_link_libraries(impulse2d_device_bench PRIVATE impulse2d_devices)
+
 if(NOT IMPULSE2D_CORE_ONLY)
-  install(TARGETS impulse2d_bench RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  install(TARGETS impulse2d_bench impulse2d_device_bench
+    RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()

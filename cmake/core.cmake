@@ -1,4 +1,5 @@
-# The ROS-free parts: the engine (Eigen only), the YAML scene loader and the headless simulator.
+# The ROS-free parts: the engine (Eigen only), the YAML scene loader, the devices (drives, lasers,
+# bumpers) and the headless simulator.
 file(GLOB IMPULSE2D_CORE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/core/*.cpp)
 add_library(impulse2d_core ${IMPULSE2D_CORE_SOURCES})
 target_include_directories(impulse2d_core PUBLIC ${PROJECT_SOURCE_DIR}/include
@@ -17,6 +18,11 @@ add_library(impulse2d_scene ${IMPULSE2D_SCENE_SOURCES})
 target_link_libraries(impulse2d_scene PUBLIC impulse2d_core PRIVATE yaml-cpp)
 set_target_properties(impulse2d_scene PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
+file(GLOB IMPULSE2D_DEVICE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/devices/*.cpp)
+add_library(impulse2d_devices ${IMPULSE2D_DEVICE_SOURCES})
+target_link_libraries(impulse2d_devices PUBLIC impulse2d_core)
+set_target_properties(impulse2d_devices PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
 file(GLOB IMPULSE2D_SIM_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/sim/*.cpp)
 add_executable(impulse2d_sim ${IMPULSE2D_SIM_SOURCES})
-target_link_libraries(impulse2d_sim PRIVATE impulse2d_scene)
+target_link_libraries(impulse2d_sim PRIVATE impulse2d_scene impulse2d_devices)

@@ -18,14 +18,18 @@ add_link_options(-fsanitize=address,undefined)
 # Defines the harness targets; called once core.cmake's libraries exist.
 function(impulse2d_add_fuzzers)
   # The node's request path without ROS (sim_world.cpp includes no ROS header by design).
-  # sim_world_urdf.cpp holds its URDF models (also ROS-free), so it needs impulse2d_urdf.
+  # sim_world_urdf.cpp holds its URDF models and sim_world_devices.cpp its devices (also
+  # ROS-free), so it needs impulse2d_urdf and impulse2d_devices.
   if(NOT TARGET impulse2d_urdf)
     message(FATAL_ERROR "fuzzers: the node's request path needs the impulse2d_urdf library")
   endif()
   add_library(impulse2d_fuzz_sim_world STATIC ${PROJECT_SOURCE_DIR}/src/ros/sim_world.cpp
+    ${PROJECT_SOURCE_DIR}/src/ros/sim_world_devices.cpp
+    ${PROJECT_SOURCE_DIR}/src/ros/sim_world_queries.cpp
     ${PROJECT_SOURCE_DIR}/src/ros/sim_world_urdf.cpp)
   target_include_directories(impulse2d_fuzz_sim_world PUBLIC ${PROJECT_SOURCE_DIR}/src/ros)
-  target_link_libraries(impulse2d_fuzz_sim_world PUBLIC impulse2d_scene impulse2d_urdf)
+  target_link_libraries(impulse2d_fuzz_sim_world PUBLIC impulse2d_scene impulse2d_devices
+    impulse2d_urdf)
 
   file(GLOB harnesses CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/fuzz/fuzz_*.cpp)
   set(IMPULSE2D_FUZZERS "")
@@ -34,8 +38,8 @@ function(impulse2d_add_fuzzers)
     add_executable(${name} ${source})
     target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test/fuzz
       ${PROJECT_SOURCE_DIR}/src/core ${PROJECT_SOURCE_DIR}/src/scene)
-    target_link_libraries(${name} PRIVATE impulse2d_core impulse2d_scene impulse2d_urdf
-      impulse2d_fuzz_sim_world)
+    target_link_libraries(${name} PRIVATE impulse2d_core impulse2d_scene impulse2d_devices
+      impulse2d_urdf impulse2d_fuzz_sim_world)
     target_link_options(${name} PRIVATE -fsanitize=fuzzer)
     list(APPEND IMPULSE2D_FUZZERS ${name})
   endforeach()

@@ -8,13 +8,18 @@ include_directories(SYSTEM ${catkin_INCLUDE_DIRS} ${CATKIN_DEVEL_PREFIX}/${CATKI
 # The world node's logic, shared by impulse2d_node and the nodelet.
 add_library(impulse2d_ros STATIC
   src/ros/conversions.cpp
+  src/ros/device_endpoints.cpp
+  src/ros/device_messages.cpp
   src/ros/markers.cpp
   src/ros/scene_param.cpp
   src/ros/sim_world.cpp
+  src/ros/sim_world_devices.cpp
+  src/ros/sim_world_queries.cpp
+  src/ros/world_devices.cpp
   src/ros/world_node.cpp
   src/ros/world_publish.cpp
   src/ros/world_services.cpp)
-target_link_libraries(impulse2d_ros PUBLIC impulse2d_scene ${catkin_LIBRARIES})
+target_link_libraries(impulse2d_ros PUBLIC impulse2d_scene impulse2d_devices ${catkin_LIBRARIES})
 set_target_properties(impulse2d_ros PROPERTIES POSITION_INDEPENDENT_CODE ON)
 add_dependencies(impulse2d_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
 
@@ -30,8 +35,11 @@ if(CATKIN_ENABLE_TESTING)
   find_package(roslaunch REQUIRED)
 
   # Conversions, the ~scene parameter and the markers, without a master.
-  catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp test/ros/markers_test.cpp)
+  catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp
+    test/ros/device_messages_test.cpp test/ros/markers_test.cpp test/ros/sim_world_devices_test.cpp)
   target_link_libraries(impulse2d_ros_unit_tests impulse2d_ros GTest::gtest_main)
+  target_compile_definitions(impulse2d_ros_unit_tests PRIVATE
+    IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
   # One gtest node, run once against impulse2d_node and once against the nodelet.
   add_rostest_gtest(impulse2d_world_tests test/ros/world_node.test
@@ -45,11 +53,18 @@ if(CATKIN_ENABLE_TESTING)
     ${PROJECT_NAME}_generate_messages_cpp)
   add_rostest(test/ros/world_nodelet.test DEPENDENCIES impulse2d_world_tests)
 
+  # Robots in the loop: drives, lasers, bumpers, ~ray_cast and ~query_point.
+  add_rostest_gtest(impulse2d_robot_tests test/ros/robot.test test/ros/robot_test.cpp
+    test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
+  target_link_libraries(impulse2d_robot_tests ${catkin_LIBRARIES})
+  add_dependencies(impulse2d_robot_tests impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
+
   roslaunch_add_file_check(launch/world.launch)
+  roslaunch_add_file_check(launch/robot_demo.launch rviz:=false)
   roslaunch_add_file_check(launch/demo.launch rviz:=false)
 endif()
 
-install(TARGETS impulse2d_core impulse2d_scene impulse2d_sim
+install(TARGETS impulse2d_core impulse2d_devices impulse2d_scene impulse2d_sim
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

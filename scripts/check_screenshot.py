@@ -22,14 +22,18 @@ MIN_SPREAD = 0.2  # the scenes' bodies span most of the view in both directions
 MIN_PIXELS = 40  # true marker colours cover hundreds; antialiased mixes of others a few dozen at most
 
 # The colours of src/ros/markers.cpp, as hue ranges in degrees (saturated pixels only), and the
-# static grey as a brightness range (the grid is drawn at 30% alpha and stays darker).
+# static grey as a brightness range (the grid is drawn at 30% alpha and stays darker). The robot
+# demo adds the colours of rviz/robot_demo.rviz and config/round_robot.urdf.
 HUES = {
     "contact_point": [(345, 360), (0, 12)],  # red (1.0, 0.2, 0.2)
     "kinematic": [(22, 40)],                 # orange (1.0, 0.6, 0.1)
     "contact_normal": [(45, 62)],            # yellow (1.0, 0.9, 0.2)
     "awake": [(110, 150)],                   # green (0.2, 0.9, 0.3)
+    "scan": [(170, 195)],                    # cyan LaserScan (0, 230, 230)
     "asleep": [(215, 240)],                  # blue (0.35, 0.45, 0.9)
+    "robot": [(250, 280)],                   # violet RobotModel shell (0.55, 0.35, 0.85)
     "joint": [(285, 315)],                   # magenta (0.9, 0.3, 0.9)
+    "odometry": [(318, 338)],                # pink Odometry arrows (255, 120, 200)
 }
 STATIC_GREY = (110, 200)  # 0..255 brightness of unsaturated pixels: grey (0.6, 0.6, 0.6), lit
 COLOURS = ["static"] + list(HUES)

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # RViz end to end: saves a PNG of what a user sees.
 #   scripts/screenshot.sh OUT.png [SCENE.yaml] [--plane xz|xy] [--settle SECONDS]
+#   scripts/screenshot.sh OUT.png --launch robot_demo.launch [--cmd-vel 'V W'] [--settle SECONDS]
 # Starts its own ROS master on a free port, `roslaunch impulse2d demo.launch` (the node on SCENE
 # and RViz with the package's config for the plane) on a virtual X screen (xvfb-run), waits until
 # the world has stepped SECONDS of simulated time (default 3) and RViz has drawn coloured markers,
 # then saves the screen with ImageMagick's `import -window root`. Everything it started is stopped
 # on exit, also on failure or Ctrl-C. Uses the workspace built by scripts/build.sh
 # ($IMPULSE2D_WS, default ~/.cache/impulse2d_ws). SCENE defaults to config/demo.yaml (xz) or
-# config/topdown.yaml (xy); without --plane the scene's own world.plane is used.
+# config/topdown.yaml (xy); without --plane the scene's own world.plane is used. --launch runs
+# another launch file of the package instead (with its own scene and RViz config); --cmd-vel
+# publishes linear.x V (m/s) and angular.z W (rad/s) on /impulse2d/cmd_vel at 10 Hz from when the
+# world steps until the picture is taken (the robot demo drives its robot).
 # Exit status: 0 with the PNG written, 1 with one "screenshot.sh: ..." line saying what failed.
 set -euo pipefail
 REPO="$(cd "$(dirname "$0")/.." && pwd)"
@@ -22,12 +26,14 @@ die() {
   echo "screenshot.sh: $*" >&2
   exit 1
 }
-usage() { sed -n '2,3p' "$0" | sed 's/^# *//' >&2; exit 2; }
+usage() { sed -n '2,4p' "$0" | sed 's/^# *//' >&2; exit 2; }
 
-out="" scene="" plane="" settle=3
+out="" scene="" plane="" settle=3 launch="" cmd_vel=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --plane) [ $# -ge 2 ] || usage; plane="$2"; shift 2 ;;
+    --launch) [ $# -ge 2 ] || usage; launch="$2"; shift 2 ;;
+    --cmd-vel) [ $# -ge 2 ] || usage; cmd_vel="$2"; shift 2 ;;
     --settle) [ $# -ge 2 ] || usage; settle="$2"; shift 2 ;;
     -h | --help) usage ;;
     -*) echo "screenshot.sh: unknown option $1" >&2; usage ;;
@@ -38,6 +44,11 @@ done
 case "$out" in *.png) ;; *) die "OUT must end in .png: $out" ;; esac
 case "$plane" in "" | xz | xy) ;; *) die "--plane must be xz or xy, not '$plane'" ;; esac
 [[ "$settle" =~ ^[0-9]+([.][0-9]+)?$ ]] || die "--settle must be a number of seconds, not '$settle'"
+number='-?[0-9]+([.][0-9]+)?'
+[ -z "$cmd_vel" ] || [[ "$cmd_vel" =~ ^$number\ $number$ ]] ||
+  die "--cmd-vel must be two numbers 'V W', not '$cmd_vel'"
+[ -z "$launch" ] || [ -z "$scene$plane" ] || die "--launch takes no SCENE or --plane (the launch file has its own)"
+case "$launch" in "" | *.launch) ;; *) die "--launch must name a .launch file of the package, not '$launch'" ;; esac
 
 for tool in xvfb-run xauth import convert rviz roscore roslaunch rostopic; do
   command -v "$tool" >/dev/null ||
@@ -47,23 +58,27 @@ done
   die "no built workspace at $WS: run scripts/build.sh first (or set IMPULSE2D_WS)"
 
 # The scene's plane and frame_id decide the RViz config and its fixed frame.
-if [ -z "$scene" ]; then
-  if [ "$plane" = xy ]; then scene="$REPO/config/topdown.yaml"; else scene="$REPO/config/demo.yaml"; fi
-fi
-[ -f "$scene" ] || die "no scene file $scene"
-scene="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")"
-# A scene the node would refuse would only show an empty grid: say why instead.
-sim_error="$("$WS/devel/lib/impulse2d/impulse2d_sim" "$scene" --steps 1 2>&1 >/dev/null)" ||
-  die "the scene is refused: ${sim_error#impulse2d_sim: }"
-read -r scene_plane frame_id < <(python3 - "$scene" 2>/dev/null <<'PY' || echo "? ?"
+if [ -n "$launch" ]; then
+  [ -f "$REPO/launch/$launch" ] || die "no launch file launch/$launch"
+else
+  if [ -z "$scene" ]; then
+    if [ "$plane" = xy ]; then scene="$REPO/config/topdown.yaml"; else scene="$REPO/config/demo.yaml"; fi
+  fi
+  [ -f "$scene" ] || die "no scene file $scene"
+  scene="$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")"
+  # A scene the node would refuse would only show an empty grid: say why instead.
+  sim_error="$("$WS/devel/lib/impulse2d/impulse2d_sim" "$scene" --steps 1 2>&1 >/dev/null)" ||
+    die "the scene is refused: ${sim_error#impulse2d_sim: }"
+  read -r scene_plane frame_id < <(python3 - "$scene" 2>/dev/null <<'PY' || echo "? ?"
 import sys, yaml
 world = (yaml.safe_load(open(sys.argv[1])) or {}).get("world") or {}
 print(world.get("plane", "xz"), world.get("frame_id", "world"))
 PY
-)
-[ "$scene_plane" != "?" ] || die "cannot read $scene as YAML"
-plane="${plane:-$scene_plane}"
-case "$plane" in xz | xy) ;; *) die "$scene: world.plane must be xz or xy, not '$plane'" ;; esac
+  )
+  [ "$scene_plane" != "?" ] || die "cannot read $scene as YAML"
+  plane="${plane:-$scene_plane}"
+  case "$plane" in xz | xy) ;; *) die "$scene: world.plane must be xz or xy, not '$plane'" ;; esac
+fi
 
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/impulse2d_screenshot.XXXXXX")"
 started=()  # pids of what we started, stopped in reverse order
@@ -148,8 +163,12 @@ read -r DISPLAY XAUTHORITY <"$tmp/display"
 export DISPLAY XAUTHORITY
 
 launch_log="$tmp/launch.log"
-roslaunch impulse2d demo.launch scene:="$scene" plane:="$plane" fixed_frame:="$frame_id" \
-  >"$launch_log" 2>&1 &
+if [ -n "$launch" ]; then
+  roslaunch impulse2d "$launch" >"$launch_log" 2>&1 &
+else
+  roslaunch impulse2d demo.launch scene:="$scene" plane:="$plane" fixed_frame:="$frame_id" \
+    >"$launch_log" 2>&1 &
+fi
 started+=($!)
 
 simulated_time() {  # the node's "simulated time (s)" from /diagnostics
@@ -157,6 +176,14 @@ simulated_time() {  # the node's "simulated time (s)" from /diagnostics
     awk '/key: "simulated time \(s\)"/ { getline; gsub(/[^0-9.e+-]/, "", $2); print $2; exit }'
 }
 has_stepped() { python3 -c 'import sys; sys.exit(float(sys.argv[1] or 0) < float(sys.argv[2]))' "$(simulated_time)" "$settle"; }
+if [ -n "$cmd_vel" ]; then
+  read -r linear angular <<<"$cmd_vel"
+  steps_at_all() { python3 -c 'import sys; sys.exit(not float(sys.argv[1] or 0) > 0)' "$(simulated_time)"; }
+  wait_for "the world stepping" "$launch_log" steps_at_all
+  rostopic pub -r 10 /impulse2d/cmd_vel geometry_msgs/Twist \
+    "{linear: {x: $linear}, angular: {z: $angular}}" >"$tmp/cmd_vel.log" 2>&1 &
+  started+=($!)
+fi
 wait_for "the world stepping ${settle} s of simulated time" "$launch_log" has_stepped
 rviz_listens() { rostopic info /impulse2d/markers | grep -q '^ \* /rviz'; }
 wait_for "RViz subscribing to /impulse2d/markers" "$launch_log" rviz_listens
@@ -188,4 +215,5 @@ sleep 1  # one more frame, so that nothing is half drawn
 import -window root "$shot" || die "import could not capture the screen"
 mkdir -p "$(dirname "$out")"
 cp "$shot" "$out"
-echo "screenshot: $out (${SCREEN_WIDTH}x${SCREEN_HEIGHT}, plane $plane, scene $scene, 3D view $(view_geometry "$out"))"
+what="${launch:+launch $launch}"
+echo "screenshot: $out (${SCREEN_WIDTH}x${SCREEN_HEIGHT}, ${what:-plane $plane, scene $scene}, 3D view $(view_geometry "$out"))"

@@ -24,6 +24,10 @@ constexpr std::size_t kMaxNameLength = 256;
 constexpr std::size_t kMaxSceneBytes = 16u << 20;
 /// Timed wrenches (the node's ~apply_wrench) pending at one time.
 constexpr std::size_t kMaxPendingWrenches = 4096;
+/// Devices (drives, lasers, bumpers) of one world; each costs the node a few ROS connections.
+constexpr std::size_t kMaxDevices = 1024;
+/// Beams of one laser (a ray cast each per scan).
+constexpr int kMaxLaserBeams = 100000;
 /// m. Bodies are created, and may be placed, only within this distance of the origin on each
 /// axis: out to here doubles resolve better than a nanometre.
 constexpr double kMaxCoordinate = 1e6;

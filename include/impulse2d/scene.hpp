@@ -3,6 +3,7 @@
 #pragma once
 
 #include <impulse2d/defs.hpp>
+#include <impulse2d/device_defs.hpp>
 #include <impulse2d/world.hpp>
 
 #include <string>
@@ -24,6 +25,9 @@ struct Scene {
   std::string frameId = "world";
   std::vector<BodyDef> bodies;
   std::vector<SceneJoint> joints;
+  /// Devices attached to bodies of the scene or the world (device_defs.hpp). The world does not
+  /// run them: a DeviceSet (devices.hpp) does, in the node and in impulse2d_sim.
+  std::vector<DeviceDef> devices;
 };
 
 /// Parses and validates YAML text against the schema. On failure returns false and sets `error`
@@ -33,7 +37,8 @@ bool parseScene(const std::string& yamlText, Scene* out, std::string* error);
 bool loadSceneFile(const std::string& path, Scene* out, std::string* error);
 
 /// Adds every body and joint of `scene` to `world`, or nothing: names must not clash with bodies
-/// or joints already in the world, and joints may name bodies of the scene or of the world.
+/// or joints already in the world, and joints and devices may name bodies of the scene or of the
+/// world (a diff_drive's must be dynamic). The devices are only checked here, not created.
 /// The scene's `world:` settings are not applied here: `world.settings() = scene.world` does that.
 bool addScene(const Scene& scene, World& world, std::string* error,
               std::vector<BodyId>* createdBodies = nullptr,

@@ -6,6 +6,8 @@
 #include <impulse2d/defs.hpp>
 #include <impulse2d/scene.hpp>
 
+#include <Eigen/Geometry>
+
 #include <string>
 #include <vector>
 
@@ -30,10 +32,26 @@ struct UrdfJointInfo {
   double maxVelocity = 0.0;  ///< rad/s or m/s from <limit velocity>; 0 when not given
 };
 
+/// The frame of a link that is no body of its own, for tf: a link merged into a body by a fixed
+/// joint, the root link named "world", and links fixed to it without collision geometry. Only
+/// bodies lie in the plane (their top link's offset along the normal is dropped); such a link
+/// keeps its URDF pose relative to its body (or to the world link), offset along the normal and
+/// roll and pitch included, so that RViz's RobotModel draws each rigid part as the URDF builds
+/// it.
+struct UrdfFrame {
+  std::string name;  ///< "model_name/link"
+  /// The body it is fixed to ("model_name/top_link"); empty: fixed to the world.
+  std::string body;
+  /// The link's frame in the body's 3D frame (the body's tf frame), or in the world frame's.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
 struct UrdfModel {
   /// Bodies and joints, names prefixed; plane and frame as placed, world settings default.
   Scene scene;
   std::vector<UrdfJointInfo> joints;
+  /// Frames of the links that are not bodies (UrdfFrame); skipped links have none.
+  std::vector<UrdfFrame> frames;
   /// What was left out (meshes, links without collision geometry, mimic tags), one line each.
   std::vector<std::string> warnings;
 };

@@ -3,6 +3,7 @@
 
 #include <impulse2d/body.hpp>
 #include <impulse2d/defs.hpp>
+#include <impulse2d/queries.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -101,6 +102,22 @@ class World {
   bool applyTorque(BodyId id, double torque);
   /// Motor of a revolute or prismatic joint.
   bool setJointMotor(JointId id, bool enable, double speed, double maxForceOrTorque);
+
+  // --- queries (world_queries.cpp; queries.hpp says what a hit is) ---
+  /// The nearest hit of the segment from -> to over every body's shapes, bodies in `filter`
+  /// skipped; no hit when either end is not finite.
+  RayHit rayCast(const Vec2& from, const Vec2& to, const RayFilter& filter = RayFilter()) const;
+  /// A fan of segments from one origin, as a scanner casts them: (*hits)[i] is rayCast(origin,
+  /// ends[i], filter), bit for bit, computed at once: the shapes within reach are gathered once
+  /// and each segment tries only those in its direction, nearest first (ray_fan.cpp).
+  void rayCastFan(const Vec2& origin, const std::vector<Vec2>& ends, const RayFilter& filter,
+                  std::vector<RayHit>* hits) const;
+  /// The bodies with a shape containing the point (boundary included), in slot order.
+  std::vector<BodyId> queryPoint(const Vec2& point) const;
+  /// The bodies with a shape overlapping the box (touching included; exact, not by bounding
+  /// boxes), in slot order. Empty for a box that is not finite or whose lower corner exceeds its
+  /// upper one.
+  std::vector<BodyId> queryAabb(const Aabb& box) const;
 
   // --- simulation ---
   /// Advances one fixed step of settings().timeStep.

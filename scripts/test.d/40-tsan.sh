@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# ThreadSanitizer on the node: builds impulse2d_node and the world rostest client with
+# ThreadSanitizer on the node: builds impulse2d_node and the world and robot rostest clients with
 # -fsanitize=thread in a separate catkin workspace ($IMPULSE2D_WS-tsan), then runs the
-# concurrent service tests (test/ros/tsan.test) against it. Any ThreadSanitizer report from the
+# concurrent service tests (test/ros/tsan.test) and the robot tests (test/ros/tsan_robot.test)
+# against it. Any ThreadSanitizer report from the
 # node fails the stage; test/ros/tsan.supp lists the uninstrumented ROS libraries whose internal
 # synchronisation TSan cannot see. Writes rostest's JUnit XML and one case for the reports.
-# Bound: build ~4 min on 2 cores (node, its libraries, the test client), run ~30 s.
+# Bound: build ~4 min on 2 cores (node, its libraries, the test clients), run ~1 min.
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"
@@ -15,6 +16,7 @@ side_workspace tsan
 mkdir -p "$STAGE_RESULTS"
 if ! (cd "$WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DIMPULSE2D_TSAN=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -j"$(nproc)" impulse2d_node impulse2d_world_tests \
+    impulse2d_robot_tests \
     >"$STAGE_RESULTS/build.log" 2>&1); then
   tail -n 40 "$STAGE_RESULTS/build.log" >&2
   exit 1
@@ -24,6 +26,12 @@ source_side_workspace
 export TSAN_OPTIONS="suppressions=$REPO/test/ros/tsan.supp log_path=$STAGE_RESULTS/tsan second_deadlock_stack=1"
 ROS_TEST_RESULTS_DIR="$STAGE_RESULTS/rostest" rostest impulse2d tsan.test >"$STAGE_RESULTS/rostest.log" 2>&1
 rc=$?
+# The robot tests: cmd_vel callbacks, devices' topics opened and closed by ~load_scene,
+# ~delete_body and ~reset while the world steps and publishes.
+ROS_TEST_RESULTS_DIR="$STAGE_RESULTS/rostest" rostest impulse2d tsan_robot.test \
+  >"$STAGE_RESULTS/rostest_robot.log" 2>&1
+robot_rc=$?
+[ "$rc" -ne 0 ] || rc=$robot_rc
 reports=$(cat "$STAGE_RESULTS"/tsan.* 2>/dev/null | grep -c "WARNING: ThreadSanitizer")
 {
   echo '<?xml version="1.0" encoding="UTF-8"?>'

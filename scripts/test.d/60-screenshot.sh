@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # RViz end to end, both planes: scripts/screenshot.sh runs the node and RViz (under Xvfb) on the
-# demo scene (side view, xz) and on config/topdown.yaml (top-down, xy), and
+# demo scene (side view, xz), on config/topdown.yaml (top-down, xy) and the robot demo (driven;
+# its scan, odometry and RobotModel), and
 # scripts/check_screenshot.py asserts that the 3D view shows the marker colours of every body
 # state, contact points, normals and joints, spread over the view (not the empty grid, not the
 # plane seen edge-on). A broken RViz config (a wrong topic, a namespace off, a view that misses
-# the plane), launch file or marker code fails it. JUnit XML: one case per plane for the run,
+# the plane), launch file or marker code fails it. JUnit XML: one case per screenshot for the run,
 # one per colour and one for the spread.
-# Bound: 2 x (50 s + 8 s to clean up) < 2 min; typically 2 x 20 s.
+# Bound: 3 x (50 s + 8 s to clean up) < 3 min; typically 3 x 20 s.
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 export PATH="/usr/bin:$PATH"
@@ -28,13 +29,14 @@ ET.ElementTree(root).write(path, encoding="utf-8", xml_declaration=True)
 PY
 }
 
-check_plane() {  # check_plane PLANE SCENE COLOURS
-  local plane="$1" scene="$2" colours="$3" suite="screenshot_$1" started=$SECONDS log
-  log="$shots/$plane.log"
-  if timeout -k 8 50 "$REPO/scripts/screenshot.sh" "$shots/$plane.png" "$scene" --plane "$plane" >"$log" 2>&1; then
+check_shot() {  # check_shot NAME COLOURS SCREENSHOT_ARGS...
+  local name="$1" colours="$2" suite="screenshot_$1" started=$SECONDS log
+  shift 2
+  log="$shots/$name.log"
+  if timeout -k 8 50 "$REPO/scripts/screenshot.sh" "$shots/$name.png" "$@" >"$log" 2>&1; then
     junit_case "$results/${suite}_run.xml" "$suite" run
-    echo "$plane: screenshot in $((SECONDS - started)) s: $(tail -n 1 "$log")"
-    python3 "$REPO/scripts/check_screenshot.py" "$shots/$plane.png" --expect "$colours" \
+    echo "$name: screenshot in $((SECONDS - started)) s: $(tail -n 1 "$log")"
+    python3 "$REPO/scripts/check_screenshot.py" "$shots/$name.png" --expect "$colours" \
       --junit "$results/${suite}_colours.xml" --name "$suite" || status=1
   else
     cat "$log" >&2
@@ -43,6 +45,10 @@ check_plane() {  # check_plane PLANE SCENE COLOURS
   fi
 }
 
-check_plane xz "$REPO/config/demo.yaml" static,awake,asleep,contact_point,contact_normal,joint
-check_plane xy "$REPO/config/topdown.yaml" static,kinematic,awake,asleep,contact_point,contact_normal,joint
+check_shot xz static,awake,asleep,contact_point,contact_normal,joint "$REPO/config/demo.yaml" --plane xz
+check_shot xy static,kinematic,awake,asleep,contact_point,contact_normal,joint \
+  "$REPO/config/topdown.yaml" --plane xy
+# The robot demo, driven: its scan, its odometry arrows and the robot drawn by RobotModel.
+check_shot robot static,asleep,scan,odometry,robot --launch robot_demo.launch --cmd-vel '0.5 0.03' \
+  --settle 5
 exit "$status"

@@ -171,42 +171,6 @@ DistanceResult shapeDistance(const Shape& a, const Transform& xfA, const Shape& 
   return result;
 }
 
-double raycastShape(const Shape& shape, const Transform& xf, const Vec2& p0, const Vec2& p1) {
-  const Vec2 a = xf.applyInverse(p0), b = xf.applyInverse(p1);
-  const Vec2 d = b - a;
-  constexpr double kMiss = 2.0;
-  if (shape.type == ShapeType::Circle) {
-    // |a + t d - c|^2 = r^2, smallest root.
-    const Vec2 m = a - shape.circle.center;
-    const double r2 = shape.circle.radius * shape.circle.radius;
-    if (m.squaredNorm() <= r2) return 0.0;
-    const double dd = d.squaredNorm(), md = m.dot(d);
-    const double disc = md * md - dd * (m.squaredNorm() - r2);
-    if (dd == 0.0 || disc < 0.0) return kMiss;
-    const double t = (-md - std::sqrt(disc)) / dd;
-    return t >= 0.0 && t <= 1.0 ? t : kMiss;
-  }
-  // Clip the segment by every face's half-plane; it hits when something is left.
-  const Polygon& poly = shape.polygon;
-  double enter = 0.0, exit = 1.0;
-  for (int i = 0; i < poly.count; ++i) {
-    const double num = poly.normals[i].dot(poly.vertices[i] - a);  // > 0: a is inside this face
-    const double den = poly.normals[i].dot(d);
-    if (den == 0.0) {
-      if (num < 0.0) return kMiss;  // parallel and outside
-      continue;
-    }
-    const double t = num / den;
-    if (den < 0.0) {
-      enter = std::max(enter, t);
-    } else {
-      exit = std::min(exit, t);
-    }
-    if (enter > exit) return kMiss;
-  }
-  return enter;
-}
-
 namespace {
 // The farthest point of a shape from the body's centre of mass: rotation moves no point faster
 // than this radius times the angular speed.

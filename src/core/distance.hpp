@@ -18,7 +18,7 @@ DistanceResult shapeDistance(const Shape& a, const Transform& xfA, const Shape& 
                              const Transform& xfB);
 
 /// The fraction in [0, 1] of the segment p0 -> p1 at which it enters the shape (0 when p0 is
-/// inside), or a value > 1 when it misses.
+/// inside), or a value > 1 when it misses: rayCastShape's fraction (ray_cast.cpp, queries.hpp).
 double raycastShape(const Shape& shape, const Transform& xf, const Vec2& p0, const Vec2& p1);
 
 /// A body's motion over one step: its centre of mass and angle at the start (t = 0) and end

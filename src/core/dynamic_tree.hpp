@@ -5,6 +5,7 @@
 
 #include <impulse2d/math.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +37,51 @@ class DynamicTree {
       if (!node.aabb.overlaps(box)) continue;
       if (node.isLeaf()) {
         visit(id);
+      } else {
+        stack_.push_back(node.child1);
+        stack_.push_back(node.child2);
+      }
+    }
+  }
+
+  /// Walks the leaves whose fat box the segment p1 -> p2 may cross, up to `maxFraction` of it.
+  /// visit(proxy, maxFraction) returns the fraction to clip the segment to from then on: its
+  /// hit's, to look only for nearer ones; maxFraction, to go on as before; 0 to stop.
+  /// A node is skipped when the segment's box misses it, or when the node lies wholly on one side
+  /// of the segment's line (the separating axis v = perp(p2 - p1)):
+  ///
+  ///        +-----+          |v . (p1 - c)| > |v| . h : every corner of the box (centre c,
+  ///        |  c  |                                     half extents h) is on one side
+  ///        +-----+
+  ///   p1 ---------------> p2
+  template <class Visit>
+  void rayCast(const Vec2& p1, const Vec2& p2, double maxFraction, Visit&& visit) const {
+    if (root_ == kNull) return;
+    const Vec2 d = p2 - p1;
+    const Vec2 v = perp(d);
+    const Vec2 absV = v.cwiseAbs();
+    auto segmentBox = [&](double fraction) {
+      const Vec2 end = p1 + fraction * d;
+      return Aabb{p1.cwiseMin(end), p1.cwiseMax(end)};
+    };
+    Aabb box = segmentBox(maxFraction);
+    stack_.clear();
+    stack_.push_back(root_);
+    while (!stack_.empty()) {
+      const int id = stack_.back();
+      stack_.pop_back();
+      const Node& node = nodes_[id];
+      if (!node.aabb.overlaps(box)) continue;
+      const Vec2 c = 0.5 * (node.aabb.lower + node.aabb.upper);
+      const Vec2 h = 0.5 * (node.aabb.upper - node.aabb.lower);
+      if (std::abs(v.dot(p1 - c)) - absV.dot(h) > 0.0) continue;
+      if (node.isLeaf()) {
+        const double clipped = visit(id, maxFraction);
+        if (clipped <= 0.0) return;
+        if (clipped < maxFraction) {
+          maxFraction = clipped;
+          box = segmentBox(maxFraction);
+        }
       } else {
         stack_.push_back(node.child1);
         stack_.push_back(node.child2);

@@ -1,6 +1,7 @@
 // The engine side of the ROS node. No ROS header may appear here (see sim_world.hpp).
 #include "sim_world.hpp"
 
+#include <impulse2d/devices.hpp>
 #include <impulse2d/limits.hpp>
 #include <impulse2d/scene.hpp>
 #include <impulse2d/world.hpp>
@@ -40,25 +41,41 @@ uint64_t stepsFor(double duration, double timeStep) {
 
 }  // namespace
 
-SimWorld::SimWorld() : world_(std::make_unique<World>()) {}
+SimWorld::SimWorld() : world_(std::make_unique<World>()), devices_(std::make_unique<DeviceSet>()) {}
 
 SimWorld::~SimWorld() = default;
 
 bool SimWorld::loadStartScene(const std::string& yamlText, std::string* error) {
+  startDevices_.clear();
+  startDevicesAttached_ = false;
   Scene scene;
   if (!parseScene(yamlText, &scene, error)) {
     startYaml_.clear();
     restoreStart();
     return false;
   }
+  startDevices_.swap(scene.devices);  // they may name URDF bodies spawned after this
   World candidate(scene.world);
   if (!impulse2d::addScene(scene, candidate, error)) {
     startYaml_.clear();
+    startDevices_.clear();
     restoreStart();
     return false;
   }
   startYaml_ = yamlText;
   restoreStart();
+  return true;
+}
+
+bool SimWorld::attachStartDevices(std::string* error) {
+  if (startDevicesAttached_) return true;
+  if (!addDevices(startDevices_, error)) {
+    startYaml_.clear();
+    startDevices_.clear();
+    restoreStart();
+    return false;
+  }
+  startDevicesAttached_ = true;
   return true;
 }
 
@@ -68,6 +85,10 @@ void SimWorld::restoreStart() {
   plane_ = "xz";
   wrenches_.clear();
   urdfJoints_.clear();
+  urdfFrames_.clear();
+  devices_->clear();
+  scans_.clear();
+  bumperChanges_.clear();
   ++staticVersion_;
   if (!startYaml_.empty()) {
     // The start scene was checked when it was loaded, so this cannot fail.
@@ -77,10 +98,15 @@ void SimWorld::restoreStart() {
       world_ = std::make_unique<World>(scene.world);
       frameId_ = scene.frameId;
       plane_ = scene.plane;
+      scene.devices.clear();
       impulse2d::addScene(scene, *world_, &error);
     }
   }
   respawnStartUrdfs();
+  if (startDevicesAttached_) {
+    std::string error;
+    addDevices(startDevices_, &error);  // attached once onto the same world: cannot fail
+  }
 }
 
 void SimWorld::reset() { restoreStart(); }
@@ -88,7 +114,11 @@ void SimWorld::reset() { restoreStart(); }
 bool SimWorld::addScene(const std::string& yamlText, std::string* error) {
   Scene scene;
   if (!parseScene(yamlText, &scene, error)) return false;
+  // Checked against the devices here before anything is added; addScene checks their bodies.
+  *error = devices_->check(scene.devices, deviceContext());
+  if (!error->empty()) return false;
   if (!impulse2d::addScene(scene, *world_, error)) return false;
+  addDevices(scene.devices, error);  // checked above: cannot fail
   ++staticVersion_;
   return true;
 }
@@ -118,11 +148,13 @@ bool SimWorld::deleteBody(const std::string& name, std::string* error) {
     *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
     return false;
   }
-  if (world_->body(id).type == BodyType::Static) ++staticVersion_;
+  ++staticVersion_;  // a static body, or frames fixed to the body, leave tf_static
   wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
                                  [&](const Wrench& w) { return w.body == id; }),
                   wrenches_.end());
   world_->destroyBody(id);
+  devices_->dropDetached(*world_);
+  pruneUrdfFrames();
   return true;
 }
 
@@ -300,12 +332,15 @@ void SimWorld::step() {
   wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
                                  [](const Wrench& w) { return w.stepsLeft == 0; }),
                   wrenches_.end());
+  devices_->beforeStep(*world_, 1e-9 * static_cast<double>(simTimeNs_));  // after the wrenches
   world_->step();
   ++steps_;
   simTimeNs_ += static_cast<int64_t>(std::llround(timeStep() * 1e9));
   // The node drains these after every step; the cap only guards a caller that never does.
   constexpr size_t kMaxLosses = 1024;
+  bool removedAny = false;
   for (RemovedBody& removed : world_->takeRemovedBodies()) {
+    removedAny = true;
     ++staticVersion_;  // it may have been static: tf_static is sent again
     ++removedCount_;
     if (losses_.size() < kMaxLosses) {
@@ -320,6 +355,8 @@ void SimWorld::step() {
                          std::move(lost.reason), lost.position, simTimeNs_});
     }
   }
+  devices_->afterStep(*world_, 1e-9 * static_cast<double>(simTimeNs_));
+  collectDeviceReadings(removedAny);
 }
 
 std::string BodyLoss::describe() const {

@@ -8,8 +8,12 @@
 #pragma once
 
 #include <impulse2d/defs.hpp>
+#include <impulse2d/device_defs.hpp>
+
+#include <Eigen/Geometry>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +21,8 @@
 namespace impulse2d {
 
 class World;
+class DeviceSet;
+struct DeviceContext;
 
 namespace bridge {
 
@@ -83,6 +89,58 @@ struct JointReading {
   double velocity = 0.0;
 };
 
+/// A frame fixed to a body or to the world, for /tf_static: a URDF link merged into a body, a
+/// URDF world link, a laser's frame.
+struct FixedFrame {
+  std::string name;
+  std::string parent;  ///< a body's frame; empty: the world's frame_id
+  std::string owner;   ///< the body whose removal removes the frame (its parent, or its model's)
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the parent's 3D frame
+  /// Lasers: the 2D offset in the body frame instead of `pose` (the plane mapping is the node's).
+  bool laser = false;
+  Vec2 offset = Vec2::Zero();
+  double offsetAngle = 0.0;
+};
+
+/// A drive's odometry and its body's true pose, for ~odom and tf (sim_world_devices.cpp).
+struct OdometryReading {
+  std::string device;
+  std::string body;
+  DiffDriveDef def;
+  Vec2 position = Vec2::Zero();  ///< the odometry, in the odom frame
+  double angle = 0.0;
+  double speed = 0.0;                ///< m/s along the body's x
+  double turnRate = 0.0;             ///< rad/s
+  Vec2 truePosition = Vec2::Zero();  ///< the body in the world
+  double trueAngle = 0.0;
+};
+
+/// One scan of a laser, taken after the step that ended at stampNs.
+struct ScanReading {
+  std::string device;
+  std::string frame;  ///< "<body>/<device>"
+  LaserDef def;
+  int beams = 0;
+  int64_t stampNs = 0;
+  std::vector<float> ranges;
+};
+
+/// A bumper's contacts after a change, body_a always its body.
+struct BumperReading {
+  std::string device;
+  int64_t stampNs = 0;
+  std::vector<ContactSnapshot> contacts;
+};
+
+/// What ~ray_cast answers (sim_world_queries.cpp).
+struct RayCastAnswer {
+  bool hit = false;
+  std::string body;
+  Vec2 point = Vec2::Zero();
+  Vec2 normal = Vec2::Zero();
+  double fraction = 0.0;
+};
+
 /// A body the world lost by itself: removed by a step (it left the world extent, its velocity
 /// overflowed, or it was lost for good with world.remove_lost_bodies), or found lost for good
 /// and left to fall.
@@ -120,12 +178,18 @@ class SimWorld {
   SimWorld& operator=(const SimWorld&) = delete;
 
   /// Replaces everything by the scene and remembers it for reset(). On a bad scene the world is
-  /// left empty with default settings, and reset() restores that empty world.
+  /// left empty with default settings, and reset() restores that empty world. The scene's
+  /// devices wait for attachStartDevices(), so that they may name the bodies of URDF models
+  /// spawned at start in between.
   bool loadStartScene(const std::string& yamlText, std::string* error);
+  /// Attaches the start scene's devices. When they are refused the whole start scene is: the
+  /// world keeps only the start URDF models, and so does reset().
+  bool attachStartDevices(std::string* error);
   /// Back to the start scene: bodies, joints and settings; pending wrenches are dropped.
   /// The step count (simulated time) keeps running, so stamps never go backwards.
   void reset();
-  /// Adds the scene's bodies and joints (all or nothing); its `world:` settings are not applied.
+  /// Adds the scene's bodies, joints and devices (all or nothing); its `world:` settings are not
+  /// applied.
   bool addScene(const std::string& yamlText, std::string* error);
 
   bool spawnBody(const BodyDef& def, std::string* error);
@@ -155,7 +219,34 @@ class SimWorld {
                      std::string* error);
   std::vector<JointReading> urdfJointStates() const;
 
-  /// One fixed step, with the wrenches that are due.
+  // Queries (sim_world_queries.cpp): points within 1e7 m of the origin, named bodies to skip.
+  bool rayCast(const Vec2& start, const Vec2& end, const std::vector<std::string>& ignore,
+               RayCastAnswer* out, std::string* error) const;
+  bool queryPoint(const Vec2& point, std::vector<std::string>* bodies, std::string* error) const;
+
+  // Devices (sim_world_devices.cpp).
+  /// Maps a device's topic as a scene gives it to the name it is checked by, so that the
+  /// relative "scan" and the node's absolute "/impulse2d/scan" are seen as one; and names the
+  /// node's own topics, which devices may not take. Identity and none by default.
+  void setTopicRules(std::function<std::string(const std::string&)> resolve,
+                     std::vector<std::string> reserved);
+  std::vector<DeviceDef> devices() const;
+  /// Changes whenever devices are added or removed.
+  uint64_t deviceVersion() const;
+  /// A cmd_vel for the drive named `device` (v m/s forward, w rad/s), at the current simulated
+  /// time; false with a message when there is no such drive or a number is not finite.
+  bool commandDrive(const std::string& device, double v, double w, std::string* error);
+  /// Lasers and bumpers are computed only while active (someone subscribes).
+  void setDeviceActive(const std::string& device, bool active);
+  std::vector<OdometryReading> odometry() const;
+  /// The scans and bumper changes of the steps since the last call, oldest first (at most 64
+  /// of each are kept).
+  std::vector<ScanReading> takeScans();
+  std::vector<BumperReading> takeBumperChanges();
+  /// URDF link frames and laser frames whose bodies exist.
+  std::vector<FixedFrame> fixedFrames() const;
+
+  /// One fixed step, with the wrenches that are due and the devices.
   void step();
   /// The bodies that steps removed, or found lost for good, since the last call, oldest first
   /// (at most 1024 are kept between calls).
@@ -198,6 +289,14 @@ class SimWorld {
     double maxVelocity = 0.0;
   };
   void respawnStartUrdfs();
+  DeviceContext deviceContext() const;
+  /// Adds `devices` (checked against the world and the devices here) or nothing.
+  bool addDevices(const std::vector<DeviceDef>& devices, std::string* error);
+  /// After a step: queues the devices' fresh readings; drops the devices and frames of bodies
+  /// the step removed.
+  void collectDeviceReadings(bool bodiesRemoved);
+  /// Forgets the URDF frames whose owner body is gone.
+  void pruneUrdfFrames();
 
   std::unique_ptr<World> world_;
   std::string startYaml_;  ///< empty when the start scene was missing or bad
@@ -206,6 +305,14 @@ class SimWorld {
   std::vector<Wrench> wrenches_;
   std::vector<UrdfJoint> urdfJoints_;
   std::vector<UrdfRequest> startUrdfs_;
+  std::vector<FixedFrame> urdfFrames_;  ///< of the models spawned since the last restoreStart
+  std::unique_ptr<DeviceSet> devices_;
+  std::vector<DeviceDef> startDevices_;  ///< the start scene's devices
+  bool startDevicesAttached_ = false;
+  std::function<std::string(const std::string&)> resolveTopic_;
+  std::vector<std::string> reservedTopics_;
+  std::vector<ScanReading> scans_;
+  std::vector<BumperReading> bumperChanges_;
   uint64_t steps_ = 0;
   int64_t simTimeNs_ = 0;
   uint64_t staticVersion_ = 0;

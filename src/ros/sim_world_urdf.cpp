@@ -26,6 +26,15 @@ bool SimWorld::spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* 
   for (const BodyId id : bodies) out->bodies.push_back(world_->body(id).name);
   for (const JointId id : joints) out->joints.push_back(world_->jointDef(id).name);
   out->warnings = model.warnings;
+  pruneUrdfFrames();
+  for (const UrdfFrame& frame : model.frames) {
+    FixedFrame fixed;
+    fixed.name = frame.name;
+    fixed.parent = frame.body;
+    fixed.owner = frame.body.empty() ? out->bodies.front() : frame.body;
+    fixed.pose = frame.pose;
+    urdfFrames_.push_back(fixed);
+  }
   urdfJoints_.erase(std::remove_if(urdfJoints_.begin(), urdfJoints_.end(),
                                    [&](const UrdfJoint& j) { return !world_->isValid(j.id); }),
                     urdfJoints_.end());

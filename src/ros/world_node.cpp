@@ -38,8 +38,14 @@ WorldNode::Lock::~Lock() { node_.mutex_.unlock(); }
 
 WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, const std::string& name)
     : nh_(nh), pnh_(pnh), name_(name) {
+  setUpDevices();
   loadStartScene();
   loadStartUrdf();
+  // The scene's devices come last: they may name the URDF model's bodies.
+  std::string error;
+  if (!sim_.attachStartDevices(&error)) {
+    ROS_ERROR("[%s] ~scene: %s; starting without the scene", name_.c_str(), error.c_str());
+  }
   readParams();
   restartSchedule();
   statsStart_ = ros::WallTime::now();
@@ -50,6 +56,7 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, cons
 
   // From here on callbacks may run on other threads, and they take the lock.
   advertiseServices();
+  syncDevices();
   const double period = rate_ > 0.0 ? std::max(1.0 / rate_, kMinTimerPeriod) : kMinTimerPeriod;
   // Wall timers: the step rate is per wall second, and a ros::Timer would wait on the very
   // /clock this node publishes.
@@ -64,6 +71,7 @@ WorldNode::~WorldNode() {
   publishTimer_.stop();
   for (ros::ServiceServer& s : services_) s.shutdown();
   jointCommandSub_.shutdown();
+  deviceEndpoints_->shutdown();
 }
 
 void WorldNode::loadStartScene() {
@@ -127,6 +135,7 @@ void WorldNode::stepLocked() {
   const auto start = std::chrono::steady_clock::now();
   sim_.step();
   recordLosses();
+  publishDeviceReadings();
   statsStepSeconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++statsSteps_;

@@ -2,9 +2,12 @@
 // private services. impulse2d_node and the impulse2d/WorldNodelet both run exactly this class.
 #pragma once
 
+#include "conversions.hpp"
+#include "device_endpoints.hpp"
 #include "sim_world.hpp"
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <impulse2d/ApplyWrench.h>
 #include <impulse2d/CreateJoint.h>
 #include <impulse2d/DeleteBody.h>
@@ -13,6 +16,8 @@
 #include <impulse2d/GetBodyState.h>
 #include <impulse2d/JointCommand.h>
 #include <impulse2d/LoadScene.h>
+#include <impulse2d/QueryPoint.h>
+#include <impulse2d/RayCast.h>
 #include <impulse2d/RemovedBodies.h>
 #include <impulse2d/SetBodyState.h>
 #include <impulse2d/SetJointMotor.h>
@@ -89,6 +94,26 @@ class WorldNode {
   bool unpause(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
   bool reset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
 
+  // Devices and queries (world_devices.cpp).
+  /// Tells the world which topic names devices may take, before any scene is loaded.
+  void setUpDevices();
+  /// Opens and closes the devices' topics to match the world's devices. Takes the Lock briefly;
+  /// never call it holding the Lock (see DeviceEndpoints::sync).
+  void syncDevices();
+  /// Publishes the scans and bumper changes of the last step; the caller holds the Lock.
+  void publishDeviceReadings();
+  /// Lasers and bumpers run only while someone subscribes.
+  void updateDeviceDemand();
+  void onCmdVel(const std::string& device, const geometry_msgs::Twist& twist);
+  /// Odometry messages of the drives, and their tf: odom -> body, world -> odom. `driven` gets
+  /// the bodies that hang under an odom frame on tf instead of under the world frame.
+  void publishOdometry(Plane plane, const std::string& worldFrame, const ros::Time& stamp,
+                       const std::vector<OdometryReading>& odometry,
+                       std::vector<geometry_msgs::TransformStamped>* tf,
+                       std::vector<std::string>* driven);
+  bool rayCast(RayCast::Request& req, RayCast::Response& res);
+  bool queryPoint(QueryPoint::Request& req, QueryPoint::Response& res);
+
   // URDF models, joint_states and joint motors (urdf_services.cpp).
   void loadStartUrdf();
   void advertiseUrdf();
@@ -137,6 +162,10 @@ class WorldNode {
   ros::Publisher tfPub_, tfStaticPub_, clockPub_, contactsPub_, markersPub_, removedBodiesPub_;
   ros::Publisher jointStatesPub_;
   ros::Subscriber jointCommandSub_;
+  std::unique_ptr<DeviceEndpoints> deviceEndpoints_;
+  std::mutex deviceSyncMutex_;        // one syncDevices() at a time
+  uint64_t syncedDeviceVersion_ = 0;  // guarded by deviceSyncMutex_
+  bool devicesSynced_ = false;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   std::vector<ros::ServiceServer> services_;
   ros::WallTimer stepTimer_, publishTimer_;

@@ -1,10 +1,13 @@
 // WorldNode: what the publish timer sends (tf, tf_static, ~contacts, ~markers) and diagnostics.
 #include "conversions.hpp"
+#include "device_messages.hpp"
 #include "markers.hpp"
 #include "world_node.hpp"
 
 #include <impulse2d/ContactArray.h>
 #include <tf2_msgs/TFMessage.h>
+
+#include <algorithm>
 
 namespace impulse2d {
 namespace bridge {
@@ -23,6 +26,11 @@ geometry_msgs::TransformStamped bodyTransform(Plane plane, const std::string& fr
 }  // namespace
 
 void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
+  // Devices a step removed (with their bodies) give up their topics; the listeners decide
+  // which lasers and bumpers run.
+  syncDevices();
+  updateDeviceDemand();
+
   // Contacts and markers cost something to build, so only while someone listens.
   const bool wantContacts = contactsPub_.getNumSubscribers() > 0;
   const bool wantMarkers = markersPub_.getNumSubscribers() > 0;
@@ -32,6 +40,8 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
   uint64_t staticVersion = 0;
   int64_t simTimeNs = 0;
   std::vector<JointReading> jointReadings;
+  std::vector<OdometryReading> odometry;
+  std::vector<FixedFrame> fixedFrames;
   {
     Lock lock(*this);
     simTimeNs = sim_.simTimeNs();
@@ -44,6 +54,10 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
     if (wantMarkers) scene.joints = sim_.joints();
     staticVersion = sim_.staticVersion();
     jointReadings = sim_.urdfJointStates();
+    odometry = sim_.odometry();
+    if (!staticPublished_ || staticVersion != publishedStaticVersion_) {
+      fixedFrames = sim_.fixedFrames();
+    }
   }
 
   if (publishClock_) publishClock(simTimeNs);
@@ -51,8 +65,12 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
   // On simulated time a paused world keeps its stamp; tf2 would warn about repeated data.
   if (!tfPublished_ || scene.stamp != lastTfStamp_) {
     tf2_msgs::TFMessage tf;
+    // A driven body hangs under its odom frame: world -> odom -> body.
+    std::vector<std::string> driven;
+    publishOdometry(scene.plane, scene.frameId, scene.stamp, odometry, &tf.transforms, &driven);
     for (const BodySnapshot& body : scene.bodies) {
       if (body.type == BodyType::Static || body.name.empty()) continue;
+      if (std::find(driven.begin(), driven.end(), body.name) != driven.end()) continue;
       tf.transforms.push_back(bodyTransform(scene.plane, scene.frameId, scene.stamp, body));
     }
     if (!tf.transforms.empty()) tfPub_.publish(tf);
@@ -66,6 +84,10 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
     for (const BodySnapshot& body : scene.bodies) {
       if (body.type != BodyType::Static || body.name.empty()) continue;
       tf.transforms.push_back(bodyTransform(scene.plane, scene.frameId, scene.stamp, body));
+    }
+    // Frames fixed to bodies: URDF links merged into them, lasers.
+    for (const FixedFrame& frame : fixedFrames) {
+      tf.transforms.push_back(fixedTransform(scene.plane, scene.frameId, frame, scene.stamp));
     }
     tfStaticPub_.publish(tf);
     staticPublished_ = true;

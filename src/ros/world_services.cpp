@@ -48,6 +48,8 @@ void WorldNode::advertiseServices() {
   services_.push_back(pnh_.advertiseService("pause", &WorldNode::pause, this));
   services_.push_back(pnh_.advertiseService("unpause", &WorldNode::unpause, this));
   services_.push_back(pnh_.advertiseService("reset", &WorldNode::reset, this));
+  services_.push_back(pnh_.advertiseService("ray_cast", &WorldNode::rayCast, this));
+  services_.push_back(pnh_.advertiseService("query_point", &WorldNode::queryPoint, this));
   advertiseUrdf();
 }
 
@@ -68,6 +70,7 @@ bool WorldNode::deleteBody(DeleteBody::Request& req, DeleteBody::Response& res) 
     Lock lock(*this);
     sim_.deleteBody(req.name, &error);
   }
+  syncDevices();  // its devices went with it
   return answer(res, error);
 }
 
@@ -99,6 +102,7 @@ bool WorldNode::loadScene(LoadScene::Request& req, LoadScene::Response& res) {
     Lock lock(*this);
     if (!sim_.addScene(req.yaml, &error)) error = "yaml: " + error;
   }
+  syncDevices();  // the scene's devices get their topics before the answer
   return answer(res, error);
 }
 
@@ -200,8 +204,11 @@ bool WorldNode::unpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 }
 
 bool WorldNode::reset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  Lock lock(*this);
-  sim_.reset();
+  {
+    Lock lock(*this);
+    sim_.reset();
+  }
+  syncDevices();
   return true;
 }
 

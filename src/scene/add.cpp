@@ -33,6 +33,7 @@ class SceneAdder {
   std::string add() {
     std::string why = checkBodies();
     if (why.empty()) why = checkJointNames();
+    if (why.empty()) why = checkDeviceBodies();
     if (why.empty()) why = createBodies();
     if (why.empty()) why = createJoints();
     done_ = why.empty();
@@ -99,6 +100,23 @@ class SceneAdder {
       if (missing.empty()) missing = resolve(joint.bodyB, "body_b", where, &b);
       if (!missing.empty()) return missing;
       refs_.emplace_back(a, b);
+    }
+    return "";
+  }
+
+  std::string checkDeviceBodies() const {
+    for (size_t d = 0; d < scene_.devices.size(); ++d) {
+      const DeviceDef& device = scene_.devices[d];
+      const std::string where = context("devices", d, device.name);
+      BodyRef ref;
+      const std::string missing = resolve(device.body, "body", where, &ref);
+      if (!missing.empty()) return missing;
+      const BodyType type =
+          ref.worldId.valid() ? world_.body(ref.worldId).type : scene_.bodies[ref.sceneIndex].type;
+      if (device.type == DeviceType::DiffDrive && type != BodyType::Dynamic) {
+        return where + "body: '" + printable(device.body) +
+               "' is not dynamic; a diff_drive moves its body with forces";
+      }
     }
     return "";
   }

@@ -30,6 +30,31 @@ std::string checkName(const std::string& name) {
   return "";
 }
 
+std::string checkTopic(const std::string& name) {
+  if (name.empty()) return "must not be empty";
+  if (name.size() > kMaxNameLength) {
+    return "must be at most " + std::to_string(kMaxNameLength) + " characters";
+  }
+  const char* rule =
+      "must be a ROS topic name: segments of letters, digits and '_' starting with a "
+      "letter, separated by '/' (a leading '/' makes it absolute)";
+  bool segmentStart = true;
+  for (size_t i = name[0] == '/' ? 1 : 0; i < name.size(); ++i) {
+    const char c = name[i];
+    const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    const bool digit = c >= '0' && c <= '9';
+    if (c == '/') {
+      if (segmentStart) return rule;  // "//" or a trailing '/'
+      segmentStart = true;
+      continue;
+    }
+    if (segmentStart ? !letter : !(letter || digit || c == '_')) return rule;
+    segmentStart = false;
+  }
+  if (segmentStart) return rule;  // "/" alone or a trailing '/'
+  return "";
+}
+
 std::string printable(const std::string& text) {
   std::string out;
   for (char c : text) {

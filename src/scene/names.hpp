@@ -10,6 +10,11 @@ namespace scene_detail {
 /// [A-Za-z0-9_/-], not starting with '/'. Otherwise the reason, e.g. "must not be empty".
 std::string checkName(const std::string& name);
 
+/// Empty when `name` can name a ROS topic: relative (under the node's private namespace) or
+/// absolute (a leading '/'), segments of letters, digits and '_' that start with a letter, at
+/// most 256 characters. Otherwise the reason.
+std::string checkTopic(const std::string& name);
+
 /// `text` shortened and with control characters replaced, so an error stays on one line.
 std::string printable(const std::string& text);
 

@@ -29,6 +29,7 @@ std::string entryContext(const char* list, size_t index, const YAML::Node& node)
 
 const std::string& nameOf(const BodyDef& body) { return body.name; }
 const std::string& nameOf(const SceneJoint& joint) { return joint.def.name; }
+const std::string& nameOf(const DeviceDef& device) { return device.name; }
 
 template <typename Item>
 void parseList(const Fields& top, const char* key, Item (*parse)(const YAML::Node&),
@@ -56,8 +57,11 @@ void parseList(const Fields& top, const char* key, Item (*parse)(const YAML::Nod
 }
 
 Scene parseDocument(const YAML::Node& doc) {
-  if (doc.IsNull()) throw SceneError("", "the scene is empty (expected world, bodies, joints)");
-  const Fields top(doc, "a scene (keys world, bodies, joints)", {"world", "bodies", "joints"});
+  if (doc.IsNull()) {
+    throw SceneError("", "the scene is empty (expected world, bodies, joints, devices)");
+  }
+  const Fields top(doc, "a scene (keys world, bodies, joints, devices)",
+                   {"world", "bodies", "joints", "devices"});
   Scene scene;
   if (top.has("world")) {
     try {
@@ -68,6 +72,7 @@ Scene parseDocument(const YAML::Node& doc) {
   }
   parseList(top, "bodies", parseBody, &scene.bodies);
   parseList(top, "joints", parseJoint, &scene.joints);
+  parseList(top, "devices", parseDevice, &scene.devices);
   return scene;
 }
 

@@ -14,6 +14,8 @@ void parseWorld(const YAML::Node& node, Scene* scene);
 BodyDef parseBody(const YAML::Node& node);
 /// One entry of `joints:`; bodies are resolved by name only when the scene is added.
 SceneJoint parseJoint(const YAML::Node& node);
+/// One entry of `devices:`; its body is resolved by name only when the scene is added.
+DeviceDef parseDevice(const YAML::Node& node);
 
 }  // namespace scene_detail
 }  // namespace impulse2d

@@ -214,6 +214,17 @@ Vec2 Fields::vec2(const char* key, const Vec2& fallback) const {
   return v;
 }
 
+Eigen::Vector3d Fields::vec3(const char* key, const Eigen::Vector3d& fallback) const {
+  const YAML::Node* n = find(key);
+  if (n == nullptr) return fallback;
+  Eigen::Vector3d v;
+  if (!n->IsSequence() || n->size() != 3 || !toNumber((*n)[0], &v.x()) ||
+      !toNumber((*n)[1], &v.y()) || !toNumber((*n)[2], &v.z())) {
+    throw SceneError(key, "must be a list of three numbers");
+  }
+  return v;
+}
+
 std::vector<Vec2> Fields::points(const char* key) const {
   const YAML::Node& n = node(key);
   const char* shape = "must be a list of [x, y] points";

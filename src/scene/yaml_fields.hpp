@@ -50,6 +50,7 @@ class Fields {
   bool boolean(const char* key, bool fallback) const;
   std::string string(const char* key, const std::string& fallback) const;
   Vec2 vec2(const char* key, const Vec2& fallback) const;
+  Eigen::Vector3d vec3(const char* key, const Eigen::Vector3d& fallback) const;
   /// A required body, joint or frame name (see checkName).
   std::string name(const char* key) const;
   std::vector<Vec2> points(const char* key) const;

@@ -1,5 +1,6 @@
 // impulse2d_sim: runs a scene file headless for a number of steps, optionally writing body
 // states and contacts as CSV and the final state's hash. No ROS master is involved.
+#include <impulse2d/devices.hpp>
 #include <impulse2d/scene.hpp>
 #include <impulse2d/world.hpp>
 
@@ -71,6 +72,15 @@ int run(const Options& options) {
   if (!loadSceneFile(options.scenePath, &scene, &error)) return fail(kExitUsage, error);
   World world(applyOverrides(options, scene.world));
   if (!addScene(scene, world, &error)) return fail(kExitUsage, options.scenePath + ": " + error);
+  // Devices are checked as the node checks them. Without ROS nothing commands a drive, so each
+  // holds its body still, as in the node before cmd_vel arrives; lasers and bumpers are not run.
+  DeviceSet devices;
+  DeviceContext context;
+  context.plane = scene.plane;
+  context.worldFrame = scene.frameId;
+  if (!devices.add(scene.devices, world, context, 0.0, &error)) {
+    return fail(kExitUsage, options.scenePath + ": " + error);
+  }
   uint64_t steps = 0;
   if (!stepsToRun(options, world.settings().timeStep, &steps, &error)) {
     return fail(kExitUsage, error);
@@ -89,7 +99,9 @@ int run(const Options& options) {
   Progress progress(steps, start);
   if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, 0);
   for (uint64_t k = 1; k <= steps; ++k) {
+    devices.beforeStep(world, world.time());
     world.step();
+    devices.afterStep(world, world.time());
     if (k % options.every == 0 || k == steps) {
       if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, k);
       if (contactsCsv.isOpen()) contactsCsv.writeContacts(world, k);

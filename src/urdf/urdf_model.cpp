@@ -11,6 +11,7 @@
 #include "names.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace impulse2d {
 namespace urdf_detail {
@@ -30,6 +31,8 @@ struct Group {
   std::vector<ShapeDef> shapes;
   MassSum mass;
   std::vector<const urdf::Joint*> movingChildren;
+  /// The links merged into the top link, each with its frame in the top link's.
+  std::vector<std::pair<std::string, Eigen::Isometry3d>> mergedFrames;
   bool skipped = false;
 };
 
@@ -70,6 +73,7 @@ class Projector {
     if (!root) return "the model has no root link";
     std::vector<Pending> stack;
     if (root->name == kWorldLink) {
+      addFrame(kWorldLink, "", placementPose());
       if (!root->collision_array.empty()) {
         out_->warnings.push_back("link 'world': collision skipped (the world link is the ground)");
       }
@@ -140,6 +144,7 @@ class Projector {
     if (at.link == group.top) group.pose = at.pose;
     const Eigen::Isometry3d inBody =
         at.link == group.top ? Eigen::Isometry3d::Identity() : group.pose.inverse() * at.pose;
+    if (at.link != group.top) group.mergedFrames.emplace_back(link.name, inBody);
     std::string why = addCollisionShapes(plane_, link, inBody, &group.shapes, &out_->warnings);
     if (why.empty() && group.type == BodyType::Dynamic) {
       why = addInertial(plane_, link, inBody, &group.mass);
@@ -186,6 +191,38 @@ class Projector {
     return "";
   }
 
+  // The model's root frame in the world frame, in 3D.
+  Eigen::Isometry3d placementPose() const {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = plane_.e1 * placement_.position.x() + plane_.e2 * placement_.position.y();
+    pose.linear() = Eigen::AngleAxisd(placement_.angle, plane_.normal).toRotationMatrix();
+    return pose;
+  }
+
+  // A link frame for tf. A name that cannot be a frame leaves the link off tf with a warning:
+  // merged links never had to be named as frames.
+  void addFrame(const std::string& link, const std::string& body, const Eigen::Isometry3d& pose) {
+    if (!scene_detail::checkName(link).empty()) {
+      out_->warnings.push_back("link " + quotedName(link) + ": not on tf, its name " +
+                               scene_detail::checkName(link) + " (names become tf frames)");
+      return;
+    }
+    out_->frames.push_back({placement_.modelName + "/" + link, body, pose});
+  }
+
+  // The frames of a group's links: fixed to its body, or, for a static group left without a
+  // body, to the world (from the world link, which lies at the placement).
+  void addGroupFrames(const Group& group) {
+    if (!group.skipped) {
+      const std::string body = placement_.modelName + "/" + group.top->name;
+      for (const auto& [link, inBody] : group.mergedFrames) addFrame(link, body, inBody);
+    } else if (group.type == BodyType::Static) {
+      const Eigen::Isometry3d top = placementPose() * group.pose;
+      addFrame(group.top->name, "", top);
+      for (const auto& [link, inBody] : group.mergedFrames) addFrame(link, "", top * inBody);
+    }
+  }
+
   Vec2 worldPoint(const Vec2& modelPoint) const {
     return placement_.position + Rot(placement_.angle).apply(modelPoint);
   }
@@ -202,6 +239,7 @@ class Projector {
         group.skipped = true;
         out_->warnings.push_back("link " + quotedName(linkName) +
                                  " skipped with the links fixed to it: no collision geometry");
+        addGroupFrames(group);
         continue;
       }
       std::string why = prefixed(linkName, "link");
@@ -230,6 +268,7 @@ class Projector {
         def.inertia = inertia > 1e-12 * mass ? inertia : 0.0;
       }
       out_->scene.bodies.push_back(def);
+      addGroupFrames(group);
     }
     return "";
   }

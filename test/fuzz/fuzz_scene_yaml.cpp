@@ -1,7 +1,9 @@
 // The YAML scene loader end to end: any text is either refused with one line of message and the
-// world left as it was, or added whole and then stepped without a crash, a leak or a NaN.
+// world left as it was, or added whole and then stepped without a crash, a leak or a NaN, its
+// devices running (drives commanded, lasers scanning, bumpers read) as in the node.
 #include "fuzz_input.hpp"
 
+#include <impulse2d/devices.hpp>
 #include <impulse2d/scene.hpp>
 #include <impulse2d/world.hpp>
 
@@ -56,10 +58,31 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   IMPULSE2D_FUZZ_CHECK(world.bodyCount() == 1 + scene.bodies.size());
   IMPULSE2D_FUZZ_CHECK(world.jointCount() == scene.joints.size());
+  impulse2d::DeviceSet devices;
+  impulse2d::DeviceContext context;
+  context.plane = scene.plane;
+  context.worldFrame = scene.frameId;
+  if (!devices.add(scene.devices, world, context, 0.0, &error)) {
+    IMPULSE2D_FUZZ_CHECK(!error.empty() && devices.devices().empty());
+  }
+  for (impulse2d::Device& device : devices.devices()) {
+    device.active = true;
+    if (device.drive) device.drive->command(1.0, -2.0, 0.0);
+  }
   for (int i = 0; i < kSteps; ++i) {
+    devices.beforeStep(world, world.time());
     world.step();
+    devices.afterStep(world, world.time());
+    devices.dropDetached(world);
     // Whatever left the world was removed and reported; what is left is finite.
     IMPULSE2D_FUZZ_CHECK(finiteState(world));
+    for (const impulse2d::Device& device : devices.devices()) {
+      if (device.drive) {
+        IMPULSE2D_FUZZ_CHECK(std::isfinite(device.drive->odometry().angle) &&
+                             impulse2d::isFinite(device.drive->odometry().position));
+      }
+      for (const float range : device.ranges) IMPULSE2D_FUZZ_CHECK(!std::isnan(range));
+    }
   }
   return 0;
 }

@@ -89,6 +89,12 @@ class Urdf : public testing::Test {
 
 TEST_F(Urdf, ArmFromUrdfParamAtStart) {
   EXPECT_TRUE(hasFrame("arm/base_link"));  // static: on /tf_static
+  // The root link 'world' too, at the model's placement, as RViz's RobotModel looks for it.
+  ASSERT_TRUE(hasFrame("arm/world"));
+  const geometry_msgs::Transform root =
+      buffer_.lookupTransform("world", "arm/world", ros::Time(0)).transform;
+  EXPECT_NEAR(root.translation.x, 3.0, 1e-9);
+  EXPECT_NEAR(root.translation.z, 0.0, 1e-9);
   EXPECT_TRUE(hasFrame("arm/upper_arm"));
   EXPECT_TRUE(hasFrame("arm/forearm"));
   EXPECT_TRUE(
@@ -127,6 +133,16 @@ TEST_F(Urdf, SensorRobotMergesFixedLinks) {
   EXPECT_TRUE(waitFor([&] { return joints_.has("bot/front_wheel_joint"); }, kWait));
   impulse2d::GetBodyState::Response lidar;
   EXPECT_FALSE(getState("bot/lidar_link", &lidar));  // part of bot/base_link's body
+  // Every link has its frame on tf, as RViz's RobotModel (TF prefix 'bot') needs: the merged
+  // ones as offsets from their body.
+  for (const char* link : {"base_link", "lidar_link", "camera_link", "camera_optical_frame",
+                           "front_wheel", "rear_wheel"}) {
+    EXPECT_TRUE(hasFrame(std::string("bot/") + link)) << link;
+  }
+  const geometry_msgs::Transform mount =
+      buffer_.lookupTransform("bot/base_link", "bot/lidar_link", ros::Time(0)).transform;
+  EXPECT_NEAR(mount.translation.x, 0.2, 1e-9);
+  EXPECT_NEAR(mount.translation.z, 0.15, 1e-9);
 }
 
 TEST_F(Urdf, TwoLinkArmOverTheService) {

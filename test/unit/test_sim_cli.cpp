@@ -136,6 +136,38 @@ TEST(SimCli, BadSceneExitsTwoNamingTheKey) {
   expectOneLineError(runSim({bad + "unknown_body.yaml"}), 2, "joints[0] 'hinge': body_a");
 }
 
+// Devices are checked as in the node; a drive with no command holds its body still against a
+// push (here, the body starts moving at 1 m/s), lasers and bumpers are not run.
+TEST(SimCli, ScenesWithDevicesRunAndBadDevicesExitTwo) {
+  const std::string scene = tempPath("robot.yaml");
+  const std::string csv = tempPath("robot.csv");
+  auto write = [&](const std::string& plane) {
+    std::ofstream out(scene);
+    out << "world: {plane: " << plane << ", gravity: [0.0, 0.0]}\n"
+        << "bodies: [{name: robot, linear_velocity: [1.0, 0.0], shapes: [{type: circle, "
+           "radius: 0.25}]}]\n"
+        << "devices: [{type: diff_drive, name: drive, body: robot}, {type: laser, name: laser, "
+           "body: robot}, {type: bumper, name: bumper, body: robot}]\n";
+  };
+  write("xy");
+  const SimRun run = runSim({scene, "--steps", "100", "--every", "100", "--csv", csv});
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  const std::vector<std::string> rows = lines(readFile(csv));
+  ASSERT_EQ(rows.size(), 3u);  // the header, step 0 and step 100
+  // The drive brakes at most max_force / mass = 9.81 m/s^2: stopped after 0.1 s and about 5 cm
+  // (without it the robot would have coasted 1 m).
+  double x = 0.0, vx = 1.0;
+  ASSERT_EQ(std::sscanf(rows[2].c_str(), "100,%*[^,],robot,%lf,%*[^,],%*[^,],%lf", &x, &vx), 2)
+      << rows[2];
+  EXPECT_NEAR(x, 0.05, 0.01);
+  EXPECT_NEAR(vx, 0.0, 1e-9);
+  std::remove(csv.c_str());
+  write("xz");
+  expectOneLineError(runSim({scene}), 2,
+                     "devices[0] 'drive': type: a diff_drive drives on the floor");
+  std::remove(scene.c_str());
+}
+
 TEST(SimCli, UnwritableOutputIsAnError) {
   const SimRun run =
       runSim({config("pendulum.yaml"), "--steps", "1", "--csv", "/nonexistent/x.csv"});

@@ -1,0 +1,95 @@
+// The differential drive (diff_drive.hpp): ramps, forces and odometry.
+#include <impulse2d/diff_drive.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+
+namespace {
+constexpr double kStandardGravity = 9.81;  // m/s^2, for the default traction: the body's weight
+}  // namespace
+
+double rampTowards(double current, double target, double maxRate, double dt) {
+  const double step = maxRate * dt;
+  return current + std::clamp(target - current, -step, step);
+}
+
+Pose2 integrateArc(const Pose2& pose, double v, double w, double dt) {
+  Pose2 out;
+  const double turn = w * dt;
+  if (std::abs(turn) < 1e-6) {
+    const double mid = pose.angle + 0.5 * turn;
+    out.position = pose.position + v * dt * Vec2(std::cos(mid), std::sin(mid));
+  } else {
+    const double r = v / w;
+    const double a0 = pose.angle, a1 = pose.angle + turn;
+    out.position =
+        pose.position + r * Vec2(std::sin(a1) - std::sin(a0), std::cos(a0) - std::cos(a1));
+  }
+  out.angle = pose.angle + turn;
+  return out;
+}
+
+DiffDrive::DiffDrive(const DiffDriveDef& def, BodyId body, const World& world)
+    : def_(def), body_(body) {
+  const Body& b = world.body(body);
+  if (!(def_.maxForce > 0.0)) def_.maxForce = b.mass * kStandardGravity;
+  if (!(def_.maxTorque > 0.0)) def_.maxTorque = def_.maxForce * b.maxExtent;
+}
+
+void DiffDrive::command(double v, double w, double now) {
+  if (!std::isfinite(v) || !std::isfinite(w)) return;
+  commandV_ = v;
+  commandW_ = w;
+  commandTime_ = now;
+  hasCommand_ = true;
+}
+
+bool DiffDrive::timedOut(double now) const {
+  return hasCommand_ && def_.cmdTimeout > 0.0 && now - commandTime_ > def_.cmdTimeout;
+}
+
+void DiffDrive::beforeStep(World& world, double now) {
+  const double dt = world.settings().timeStep;
+  const bool live = hasCommand_ && !timedOut(now);
+  startSpeed_ = speed_;
+  startTurnRate_ = turnRate_;
+  speed_ = rampTowards(speed_, live ? commandV_ : 0.0, def_.maxLinearAccel, dt);
+  turnRate_ = rampTowards(turnRate_, live ? commandW_ : 0.0, def_.maxAngularAccel, dt);
+  if (!world.isValid(body_)) return;
+  const Body& body = world.body(body_);
+
+  // The origin's velocity along the heading half a step ahead, and the centre of mass's that
+  // goes with it at the new turn rate.
+  const double heading = body.angle + 0.5 * turnRate_ * dt;
+  const Vec2 originVelocity = speed_ * Vec2(std::cos(heading), std::sin(heading));
+  const Vec2 centerVelocity = originVelocity + cross(turnRate_, Vec2(body.center - body.xf.p));
+  // The step gives v' = (v + dt (g + (F + F_applied) / m)) / (1 + dt c) (world_step.cpp,
+  // integrateVelocities), F_applied being the forces already applied for this step (a wrench);
+  // solved for F with v' = the target, likewise for the torque.
+  const double m = body.mass, dampLinear = 1.0 + dt * body.linearDamping;
+  Vec2 force = m * (dampLinear * centerVelocity - body.linearVelocity) / dt -
+               m * world.settings().gravity - body.force;
+  double torque =
+      body.inertia * ((1.0 + dt * body.angularDamping) * turnRate_ - body.angularVelocity) / dt -
+      body.torque;
+  if (force.norm() > def_.maxForce) force *= def_.maxForce / force.norm();
+  torque = std::clamp(torque, -def_.maxTorque, def_.maxTorque);
+  // A stopped drive on level ground leaves the rounding residue of its last stop alone, so the
+  // body can fall asleep.
+  constexpr double kNegligible = 1e-9;  // of the caps
+  if (force.norm() <= kNegligible * def_.maxForce &&
+      std::abs(torque) <= kNegligible * def_.maxTorque) {
+    return;
+  }
+  world.applyForce(body_, force, body.center);
+  world.applyTorque(body_, torque);
+}
+
+void DiffDrive::afterStep(double dt) {
+  odometry_ =
+      integrateArc(odometry_, 0.5 * (startSpeed_ + speed_), 0.5 * (startTurnRate_ + turnRate_), dt);
+}
+
+}  // namespace impulse2d

@@ -1,0 +1,181 @@
+// SimWorld's devices: adding them with scenes, commands in, readings out, and the frames fixed to
+// bodies (lasers, URDF links) for tf. No ROS header may appear here (see sim_world.hpp).
+#include "sim_world.hpp"
+
+#include <impulse2d/devices.hpp>
+#include <impulse2d/scene.hpp>
+#include <impulse2d/world.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse2d {
+namespace bridge {
+namespace {
+
+// Readings the node did not take are dropped beyond this (it takes them after every step).
+constexpr size_t kMaxQueuedReadings = 64;
+
+template <typename Reading>
+void enqueue(std::vector<Reading>* queue, Reading reading) {
+  if (queue->size() >= kMaxQueuedReadings) queue->erase(queue->begin());
+  queue->push_back(std::move(reading));
+}
+
+}  // namespace
+
+void SimWorld::setTopicRules(std::function<std::string(const std::string&)> resolve,
+                             std::vector<std::string> reserved) {
+  resolveTopic_ = std::move(resolve);
+  reservedTopics_ = std::move(reserved);
+}
+
+DeviceContext SimWorld::deviceContext() const {
+  DeviceContext context;
+  context.plane = plane_;
+  context.worldFrame = frameId_;
+  context.resolveTopic = resolveTopic_;
+  context.reservedTopics = reservedTopics_;
+  return context;
+}
+
+bool SimWorld::addDevices(const std::vector<DeviceDef>& devices, std::string* error) {
+  if (devices.empty()) return true;
+  // A scene of devices only: addScene checks that their bodies exist and adds nothing else.
+  Scene onlyDevices;
+  onlyDevices.devices = devices;
+  if (!impulse2d::addScene(onlyDevices, *world_, error)) return false;
+  if (!devices_->add(devices, *world_, deviceContext(), 1e-9 * static_cast<double>(simTimeNs_),
+                     error)) {
+    return false;
+  }
+  ++staticVersion_;  // laser frames
+  return true;
+}
+
+std::vector<DeviceDef> SimWorld::devices() const {
+  std::vector<DeviceDef> out;
+  for (const Device& device : devices_->devices()) out.push_back(device.def);
+  return out;
+}
+
+uint64_t SimWorld::deviceVersion() const { return devices_->version(); }
+
+bool SimWorld::commandDrive(const std::string& device, double v, double w, std::string* error) {
+  Device* found = devices_->find(device);
+  if (found == nullptr || !found->drive) {
+    *error = "no diff_drive named '" + device + "'";
+    return false;
+  }
+  if (!std::isfinite(v) || !std::isfinite(w)) {
+    *error = "linear.x, angular.z: must be finite";
+    return false;
+  }
+  found->drive->command(v, w, 1e-9 * static_cast<double>(simTimeNs_));
+  return true;
+}
+
+void SimWorld::setDeviceActive(const std::string& device, bool active) {
+  Device* found = devices_->find(device);
+  if (found != nullptr) found->active = active;
+}
+
+std::vector<OdometryReading> SimWorld::odometry() const {
+  std::vector<OdometryReading> out;
+  for (const Device& device : devices_->devices()) {
+    if (!device.drive || !world_->isValid(device.body)) continue;
+    const Body& body = world_->body(device.body);
+    OdometryReading r;
+    r.device = device.def.name;
+    r.body = body.name;
+    r.def = device.def.diffDrive;
+    r.position = device.drive->odometry().position;
+    r.angle = device.drive->odometry().angle;
+    r.speed = device.drive->speed();
+    r.turnRate = device.drive->turnRate();
+    r.truePosition = body.xf.p;
+    r.trueAngle = body.angle;
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+void SimWorld::collectDeviceReadings(bool bodiesRemoved) {
+  for (Device& device : devices_->devices()) {
+    if (!device.fresh) continue;
+    device.fresh = false;
+    if (device.laser) {
+      ScanReading scan;
+      scan.device = device.def.name;
+      scan.frame = device.def.body + "/" + device.def.name;
+      scan.def = device.def.laser;
+      scan.beams = device.laser->beamCount();
+      scan.stampNs = simTimeNs_;
+      scan.ranges = device.ranges;
+      enqueue(&scans_, std::move(scan));
+    } else if (device.bumper) {
+      BumperReading change;
+      change.device = device.def.name;
+      change.stampNs = simTimeNs_;
+      for (const ContactInfo& c : device.bumper->contacts()) {
+        ContactSnapshot snap;
+        snap.bodyA = world_->body(c.bodyA).name;
+        snap.bodyB = world_->body(c.bodyB).name;
+        snap.point = c.point;
+        snap.normal = c.normal;
+        snap.separation = c.separation;
+        snap.normalImpulse = c.normalImpulse;
+        snap.tangentImpulse = c.tangentImpulse;
+        change.contacts.push_back(std::move(snap));
+      }
+      enqueue(&bumperChanges_, std::move(change));
+    }
+  }
+  // Bodies the step removed take their devices and frames along.
+  if (!bodiesRemoved) return;
+  const uint64_t version = devices_->version();
+  devices_->dropDetached(*world_);
+  if (devices_->version() != version) ++staticVersion_;
+  pruneUrdfFrames();
+}
+
+std::vector<ScanReading> SimWorld::takeScans() {
+  std::vector<ScanReading> out;
+  out.swap(scans_);
+  return out;
+}
+
+std::vector<BumperReading> SimWorld::takeBumperChanges() {
+  std::vector<BumperReading> out;
+  out.swap(bumperChanges_);
+  return out;
+}
+
+void SimWorld::pruneUrdfFrames() {
+  urdfFrames_.erase(
+      std::remove_if(urdfFrames_.begin(), urdfFrames_.end(),
+                     [&](const FixedFrame& f) { return !world_->findBody(f.owner).valid(); }),
+      urdfFrames_.end());
+}
+
+std::vector<FixedFrame> SimWorld::fixedFrames() const {
+  std::vector<FixedFrame> out;
+  for (const FixedFrame& frame : urdfFrames_) {
+    if (world_->findBody(frame.owner).valid()) out.push_back(frame);
+  }
+  for (const Device& device : devices_->devices()) {
+    if (!device.laser || !world_->isValid(device.body)) continue;
+    FixedFrame frame;
+    frame.name = device.def.body + "/" + device.def.name;
+    frame.parent = device.def.body;
+    frame.owner = device.def.body;
+    frame.laser = true;
+    frame.offset = device.def.laser.offset;
+    frame.offsetAngle = device.def.laser.offsetAngle;
+    out.push_back(frame);
+  }
+  return out;
+}
+
+}  // namespace bridge
+}  // namespace impulse2d

@@ -1,0 +1,202 @@
+// The differential drive's model without ROS: ramps, dead reckoning, and the drive moving a body
+// through the physics (straight, turning, stopping on a timeout, blocked, pushed, on a slope).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <impulse2d/diff_drive.hpp>
+
+#include "test_scenes.hpp"
+
+namespace impulse2d {
+namespace {
+
+constexpr double kDt = 0.01;
+
+TEST(Ramp, MovesTowardsTheTargetByAtMostRateTimesDt) {
+  EXPECT_DOUBLE_EQ(rampTowards(0.0, 0.5, 2.0, kDt), 0.02);
+  EXPECT_DOUBLE_EQ(rampTowards(0.49, 0.5, 2.0, kDt), 0.5);
+  EXPECT_DOUBLE_EQ(rampTowards(0.5, -0.5, 2.0, kDt), 0.48);
+  EXPECT_DOUBLE_EQ(rampTowards(-0.01, 0.0, 2.0, kDt), 0.0);
+}
+
+TEST(Odometry, StraightLinesAndArcs) {
+  Pose2 start;
+  start.position = Vec2(1.0, 2.0);
+  start.angle = kPi / 2;
+  const Pose2 straight = integrateArc(start, 0.5, 0.0, 2.0);
+  EXPECT_NEAR(straight.position.x(), 1.0, 1e-15);
+  EXPECT_NEAR(straight.position.y(), 3.0, 1e-15);
+  // A quarter turn of radius r = v / w = 2 / pi from the origin facing +x ends at (r, r).
+  const Pose2 quarter = integrateArc(Pose2(), 1.0, kPi / 2, 1.0);
+  EXPECT_NEAR(quarter.position.x(), 2.0 / kPi, 1e-15);
+  EXPECT_NEAR(quarter.position.y(), 2.0 / kPi, 1e-15);
+  EXPECT_NEAR(quarter.angle, kPi / 2, 1e-15);
+  // A full circle in 1000 small steps comes back where it started.
+  Pose2 pose;
+  for (int i = 0; i < 1000; ++i) pose = integrateArc(pose, 0.5, 2.0 * kPi / 10.0, 0.01);
+  EXPECT_NEAR(pose.position.norm(), 0.0, 1e-12);
+  EXPECT_NEAR(pose.angle, 2.0 * kPi, 1e-12);
+  // Turns below 1e-6 rad per step take the chord along the mid heading: v dt (cos, sin)(w dt / 2).
+  const Pose2 tiny = integrateArc(Pose2(), 1.0, 1e-5, 0.01);
+  EXPECT_NEAR(tiny.position.x(), 0.01 * std::cos(0.5e-7), 1e-18);
+  EXPECT_NEAR(tiny.position.y(), 0.01 * std::sin(0.5e-7), 1e-18);
+}
+
+// A top-down world (no gravity) with a round robot of 0.25 m radius and 10 kg at the origin.
+struct DriveWorld {
+  World world;
+  BodyId robot;
+  DiffDrive drive;
+  double now = 0.0;
+
+  explicit DriveWorld(const DiffDriveDef& def = DiffDriveDef(), const Vec2& gravity = Vec2::Zero())
+      : world(settings(gravity)),
+        robot(test::addCircle(world, "robot", Vec2::Zero(), 0.25, BodyType::Dynamic,
+                              10.0 / (kPi * 0.25 * 0.25))),
+        drive(def, robot, world) {}
+
+  static WorldDef settings(const Vec2& gravity) {
+    WorldDef def;
+    def.gravity = gravity;
+    def.timeStep = kDt;
+    return def;
+  }
+  void step(int steps = 1) {
+    for (int i = 0; i < steps; ++i) {
+      drive.beforeStep(world, now);
+      world.step();
+      now += kDt;
+      drive.afterStep(kDt);
+    }
+  }
+  const Body& body() const { return world.body(robot); }
+};
+
+TEST(DiffDrive, HalfAMetrePerSecondForTwoSecondsThenZeroMovesOneMetre) {
+  DriveWorld w;
+  EXPECT_NEAR(w.body().mass, 10.0, 1e-12);
+  for (int i = 0; i < 200; ++i) {
+    w.drive.command(0.5, 0.0, w.now);  // a planner at 100 Hz
+    w.step();
+  }
+  EXPECT_DOUBLE_EQ(w.drive.speed(), 0.5);
+  w.drive.command(0.0, 0.0, w.now);
+  w.step(100);
+  // The ramps of 2 m/s^2 up and down cancel: 0.5 m/s x 2 s.
+  EXPECT_NEAR(w.drive.odometry().position.x(), 1.0, 1e-12);
+  EXPECT_NEAR(w.drive.odometry().position.y(), 0.0, 1e-12);
+  EXPECT_NEAR(w.body().xf.p.x(), 1.0, 1e-9);
+  EXPECT_NEAR(w.body().xf.p.y(), 0.0, 1e-12);
+  EXPECT_NEAR(w.body().linearVelocity.norm(), 0.0, 1e-12);
+  EXPECT_EQ(w.drive.speed(), 0.0);
+}
+
+TEST(DiffDrive, TurningFollowsTheOdometrysArc) {
+  DriveWorld w;
+  for (int i = 0; i < 400; ++i) {
+    w.drive.command(0.5, 0.8, w.now);
+    w.step();
+  }
+  const Pose2& odom = w.drive.odometry();
+  // 4 s at 0.8 rad/s, less the ramp's 0.8 / 6 s at half the rate: 3.2 - 0.0533 rad.
+  EXPECT_NEAR(odom.angle, 0.8 * 4.0 - 0.5 * 0.8 * (0.8 / 6.0), 0.005);
+  // The physics follows within what its sub-steps make of each step: a constant force changes
+  // the velocity evenly through the n sub-steps, so the mean velocity over the step leans
+  // (n - 1) / 2n of a step's turn (0.4 x 0.8 rad/s x 0.01 s) back towards last step's heading,
+  // where the odometry's arc takes the mean heading. About 0.2% of the 2.2 m driven.
+  EXPECT_NEAR(w.body().angle, odom.angle, 1e-3);
+  EXPECT_NEAR((w.body().xf.p - odom.position).norm(), 0.0, 0.01);
+  EXPECT_GT(odom.position.norm(), 1.0);  // it went somewhere: half a circle of 0.625 m radius
+}
+
+TEST(DiffDrive, StopsWhenCommandsStopComing) {
+  DiffDriveDef def;
+  def.cmdTimeout = 0.5;
+  DriveWorld w(def);
+  w.drive.command(0.5, 0.0, 0.0);  // one command, never repeated
+  w.step(50);
+  EXPECT_FALSE(w.drive.timedOut(w.now - 1e-9));
+  EXPECT_DOUBLE_EQ(w.drive.speed(), 0.5);
+  w.step(200);
+  EXPECT_TRUE(w.drive.timedOut(w.now));
+  EXPECT_EQ(w.drive.speed(), 0.0);
+  EXPECT_NEAR(w.body().linearVelocity.norm(), 0.0, 1e-12);
+  // Up in 0.25 s, on until 0.5 s, down in 0.25 s: 0.0625 + 0.125 + 0.0625 m, a step either way.
+  EXPECT_NEAR(w.body().xf.p.x(), 0.25, 0.006);
+  // A timeout of 0 never stops it.
+  DiffDriveDef forever;
+  forever.cmdTimeout = 0.0;
+  DriveWorld v(forever);
+  v.drive.command(0.5, 0.0, 0.0);
+  v.step(300);
+  EXPECT_DOUBLE_EQ(v.drive.speed(), 0.5);
+}
+
+TEST(DiffDrive, BlockedByAWallItPushesWithMaxForceAndTheOdometryRunsOn) {
+  DiffDriveDef def;
+  def.cmdTimeout = 0.0;
+  DriveWorld w(def);
+  // A wall whose face is 0.5 m ahead of the robot's front.
+  const BodyId wall = test::addBox(w.world, "wall", Vec2(0.85, 0.0), 0.2, 4.0, BodyType::Static);
+  w.drive.command(0.5, 0.0, 0.0);
+  w.step(400);
+  EXPECT_NEAR(w.body().xf.p.x(), 0.5, 0.01);        // stopped at the wall
+  EXPECT_GT(w.drive.odometry().position.x(), 1.5);  // the wheels kept turning
+  // Its push on the wall: the contact's impulse per step is max_force dt (10 kg x 9.81 N).
+  double impulse = 0.0;
+  for (const ContactInfo& c : w.world.contacts()) {
+    if (c.bodyA == wall || c.bodyB == wall) impulse += c.normalImpulse;
+  }
+  EXPECT_NEAR(impulse / kDt, 10.0 * 9.81, 0.5);
+}
+
+TEST(DiffDrive, HoldsAgainstAppliedForcesWithinMaxForceAndGivesWayBeyond) {
+  DriveWorld hold;
+  for (int i = 0; i < 100; ++i) {
+    hold.world.applyForce(hold.robot, Vec2(0.0, 0.5 * 98.1), hold.body().center);
+    hold.step();
+  }
+  EXPECT_NEAR(hold.body().xf.p.norm(), 0.0, 1e-12);
+  // Twice max_force: the drive's max_force is left, 98.1 N on 10 kg, 9.81 m/s^2.
+  DriveWorld pushed;
+  for (int i = 0; i < 100; ++i) {
+    pushed.world.applyForce(pushed.robot, Vec2(0.0, 2.0 * 98.1), pushed.body().center);
+    pushed.step();
+  }
+  EXPECT_NEAR(pushed.body().linearVelocity.y(), 9.81, 1e-6);
+  EXPECT_NEAR(pushed.body().linearVelocity.x(), 0.0, 1e-12);
+}
+
+TEST(DiffDrive, OnASlopeItHoldsWhileMaxForceAllowsThenSlides) {
+  // A floor tilted so that 2 m/s^2 of gravity pulls along -y, across the robot's heading.
+  DriveWorld gentle(DiffDriveDef(), Vec2(0.0, -2.0));
+  gentle.drive.command(0.5, 0.0, 0.0);
+  gentle.step(40);
+  EXPECT_NEAR(gentle.body().linearVelocity.x(), 0.5, 1e-9);
+  EXPECT_NEAR(gentle.body().linearVelocity.y(), 0.0, 1e-9);
+  // A traction limit below the pull: the body slides down at (20 - 15) N / 10 kg = 0.5 m/s^2,
+  // and the odometry does not see it.
+  DiffDriveDef weak;
+  weak.maxForce = 15.0;
+  DriveWorld steep(weak, Vec2(0.0, -2.0));
+  steep.step(100);
+  EXPECT_NEAR(steep.body().linearVelocity.y(), -0.5, 1e-9);
+  EXPECT_EQ(steep.drive.odometry().position.norm(), 0.0);
+}
+
+TEST(DiffDrive, IgnoresNonFiniteCommandsAndLetsARestingBodySleep) {
+  DriveWorld w;
+  w.drive.command(NAN, 0.0, 0.0);
+  w.drive.command(0.0, INFINITY, 0.0);
+  w.step(10);
+  EXPECT_EQ(w.drive.speed(), 0.0);
+  EXPECT_EQ(w.drive.turnRate(), 0.0);
+  w.drive.command(0.3, 0.0, w.now);
+  w.step(20);
+  w.drive.command(0.0, 0.0, w.now);
+  w.step(200);
+  EXPECT_FALSE(w.body().awake);  // stopped, the drive leaves it alone
+}
+
+}  // namespace
+}  // namespace impulse2d
