@@ -75,7 +75,7 @@ std::string World::validate(const WorldDef& def) {
     return "position_iterations: must be in [0, " + std::to_string(kMaxIterations) + "]";
   }
   if (std::string(solverName(def.solver)) == "unknown") {
-    return "solver: must be baumgarte, ngs or soft";
+    return "solver: must be " + solverNameList();
   }
   if (!(std::isfinite(def.contactHertz) && def.contactHertz > 0.0)) {
     return "contact_hertz: must be finite and > 0";

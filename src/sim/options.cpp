@@ -17,9 +17,8 @@ namespace sim {
 const char* const kUsage =
     "usage: impulse2d_sim SCENE.yaml [--steps N | --duration SECONDS] [--time-step DT]\n"
     "                     [--velocity-iterations K] [--position-iterations K]\n"
-    "                     [--solver baumgarte|ngs|soft] [--csv FILE] [--contacts FILE] [--every "
-    "K]\n"
-    "                     [--hash]\n"
+    "                     [--solver baumgarte|ngs|soft|substep] [--csv FILE] [--contacts FILE]\n"
+    "                     [--every K] [--hash]\n"
     "\n"
     "Runs a scene file (the YAML schema of the impulse2d README) headless, without ROS.\n"
     "\n"
@@ -28,7 +27,7 @@ const char* const kUsage =
     "  --time-step DT           override world.time_step (s, > 0)\n"
     "  --velocity-iterations K  override world.velocity_iterations (1 to 1000)\n"
     "  --position-iterations K  override world.position_iterations (0 to 1000)\n"
-    "  --solver baumgarte|ngs|soft  override world.solver\n"
+    "  --solver NAME            override world.solver: baumgarte, ngs, soft or substep\n"
     "  --csv FILE               write step,time,body,x,y,angle,vx,vy,omega: one row per\n"
     "                           dynamic or kinematic body per written step; step 0 is the\n"
     "                           initial state\n"
@@ -120,7 +119,7 @@ const std::map<std::string, Setter>& setters() {
        }},
       {"--solver",
        [](const std::string& v, Options* o) -> std::string {
-         if (!solverFromName(v, &o->solver)) return "must be baumgarte, ngs or soft";
+         if (!solverFromName(v, &o->solver)) return "must be " + solverNameList();
          o->solverGiven = true;
          return "";
        }},
