@@ -4,7 +4,8 @@
 # scripts/test.d/: catkin_lint, fuzzing (a core-only build without catkin, so it also proves the
 # core is ROS-free), the whole package again under AddressSanitizer + UndefinedBehaviorSanitizer
 # (unit tests, ROS unit tests, the rostests against the node and the nodelet; 35-asan.sh),
-# ThreadSanitizer on the node, the benchmark's smoke run and RViz end to end.
+# ThreadSanitizer on the node, the benchmark's smoke run, RViz end to end, and the README's and
+# tutorials' shell examples run as written (70-examples.sh).
 # Ends with "N passed, N failed" and exits non-zero on any failure or build error.
 set -uo pipefail
 REPO="$(cd "$(dirname "$0")/.." && pwd)"

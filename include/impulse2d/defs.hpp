@@ -74,6 +74,17 @@ inline const char* solverName(SolverType solver) {
   return "unknown";
 }
 
+/// Every solver's name for messages: "baumgarte, ngs, soft or substep".
+inline std::string solverNameList() {
+  std::string list;
+  const size_t count = sizeof(kAllSolvers) / sizeof(kAllSolvers[0]);
+  for (size_t i = 0; i < count; ++i) {
+    list += i == 0 ? "" : i + 1 == count ? " or " : ", ";
+    list += solverName(kAllSolvers[i]);
+  }
+  return list;
+}
+
 /// The inverse of solverName; false for an unknown name.
 inline bool solverFromName(const std::string& name, SolverType* solver) {
   for (SolverType s : kAllSolvers) {

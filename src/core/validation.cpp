@@ -78,7 +78,7 @@ std::string World::validate(const WorldDef& def) {
     return "threads: must be in [1, " + std::to_string(kMaxThreads) + "]";
   }
   if (std::string(solverName(def.solver)) == "unknown") {
-    return "solver: must be baumgarte, ngs, soft or substep";
+    return "solver: must be " + solverNameList();
   }
   if (!(std::isfinite(def.contactHertz) && def.contactHertz > 0.0)) {
     return "contact_hertz: must be finite and > 0";

@@ -39,8 +39,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   if (f.has("solver")) {
     const std::string solver = f.string("solver", "");
     if (!solverFromName(solver, &w.solver)) {
-      throw SceneError("solver",
-                       "must be baumgarte, ngs, soft or substep, not " + quoted(solver));
+      throw SceneError("solver", "must be " + solverNameList() + ", not " + quoted(solver));
     }
   }
   w.threads = f.integer("threads", w.threads);

@@ -27,7 +27,7 @@ const char* const kUsage =
     "  --time-step DT           override world.time_step (s, > 0)\n"
     "  --velocity-iterations K  override world.velocity_iterations (1 to 1000)\n"
     "  --position-iterations K  override world.position_iterations (0 to 1000)\n"
-    "  --solver baumgarte|ngs|soft|substep  override world.solver\n"
+    "  --solver NAME            override world.solver: baumgarte, ngs, soft or substep\n"
     "  --threads N              override world.threads (1 to 256; the same result for any N)\n"
     "  --csv FILE               write step,time,body,x,y,angle,vx,vy,omega: one row per\n"
     "                           dynamic or kinematic body per written step; step 0 is the\n"
@@ -120,7 +120,7 @@ const std::map<std::string, Setter>& setters() {
        }},
       {"--solver",
        [](const std::string& v, Options* o) -> std::string {
-         if (!solverFromName(v, &o->solver)) return "must be baumgarte, ngs, soft or substep";
+         if (!solverFromName(v, &o->solver)) return "must be " + solverNameList();
          o->solverGiven = true;
          return "";
        }},

@@ -84,6 +84,8 @@ TEST(SimCli, HelpExitsZeroWithUsage) {
     EXPECT_EQ(run.exitCode, 0);
     EXPECT_EQ(run.out.rfind("usage: impulse2d_sim SCENE.yaml", 0), 0u) << run.out;
     EXPECT_NE(run.out.find("--contacts FILE"), std::string::npos);
+    EXPECT_NE(run.out.find("override world.solver: " + solverNameList()), std::string::npos)
+        << "the usage does not name every solver: " << solverNameList();
     EXPECT_TRUE(run.err.empty()) << run.err;
   }
 }
@@ -114,7 +116,7 @@ TEST(SimCli, BadArgumentsExitTwoWithOneLine) {
       {{pendulum, "--velocity-iterations", "0"}, "--velocity-iterations"},
       {{pendulum, "--position-iterations=1001"}, "--position-iterations"},
       {{pendulum, "--every", "0"}, "--every"},
-      {{pendulum, "--solver", "pgs"}, "--solver"},
+      {{pendulum, "--solver", "pgs"}, "--solver 'pgs': must be baumgarte, ngs, soft or substep"},
       {{pendulum, "--csv", "same.csv", "--contacts", "same.csv"}, "different files"},
   };
   for (const auto& c : cases) {
