@@ -113,6 +113,21 @@ struct WorldDef {
 
 enum class ShapeKind { Box, Circle, Polygon };
 
+/// Which shapes may touch, as in Box2D: two shapes of the same non-zero group always collide
+/// (positive group) or never do (negative group); otherwise they collide only when each one's
+/// mask has a bit of the other's category. The defaults collide with everything.
+struct CollisionFilter {
+  uint64_t categoryBits = 1;         ///< what this shape is
+  uint64_t maskBits = ~uint64_t(0);  ///< what it collides with
+  int32_t groupIndex = 0;
+};
+
+/// Whether two shapes with these filters may touch.
+inline bool filtersAllowContact(const CollisionFilter& a, const CollisionFilter& b) {
+  if (a.groupIndex == b.groupIndex && a.groupIndex != 0) return a.groupIndex > 0;
+  return (a.maskBits & b.categoryBits) != 0 && (b.maskBits & a.categoryBits) != 0;
+}
+
 struct ShapeDef {
   ShapeKind kind = ShapeKind::Box;
   Vec2 size = Vec2(1.0, 1.0);  ///< box: full width and height (m)
@@ -123,6 +138,7 @@ struct ShapeDef {
   double density = 1.0;        ///< kg/m^2
   double friction = 0.6;
   double restitution = 0.0;
+  CollisionFilter filter;
 };
 
 enum class BodyType { Static, Kinematic, Dynamic };

@@ -72,7 +72,14 @@ bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
                           (joint.bodyA == bodyB && joint.bodyB == bodyA);
     if (connects && !joint.def.collideConnected) return false;
   }
-  return true;
+  // Filters belong to shapes: the pair of bodies is kept when any two of their shapes may touch,
+  // and updateContact leaves the others without points.
+  for (const Shape& shapeA : a.shapes) {
+    for (const Shape& shapeB : b.shapes) {
+      if (filtersAllowContact(shapeA.filter, shapeB.filter)) return true;
+    }
+  }
+  return false;
 }
 
 void WorldImpl::wakeBody(Body& body) {

@@ -8,10 +8,19 @@ namespace impulse2d {
 namespace scene_detail {
 namespace {
 
+CollisionFilter parseFilter(const YAML::Node& node) {
+  const Fields f(node, "a collision filter", {"category", "mask", "group"});
+  CollisionFilter filter;
+  filter.categoryBits = f.bits("category", filter.categoryBits);
+  filter.maskBits = f.bits("mask", filter.maskBits);
+  filter.groupIndex = f.integer("group", filter.groupIndex);
+  return filter;
+}
+
 ShapeDef parseShape(const YAML::Node& node) {
   const Fields f(node, "a shape",
                  {"type", "size", "radius", "vertices", "offset", "angle", "density", "friction",
-                  "restitution"});
+                  "restitution", "filter"});
   ShapeDef def;
   const std::string type = f.string("type", "box");
   std::string geometryKey;  // the one key that gives this type's geometry
@@ -41,6 +50,13 @@ ShapeDef parseShape(const YAML::Node& node) {
   def.density = f.number("density", def.density);
   def.friction = f.number("friction", def.friction);
   def.restitution = f.number("restitution", def.restitution);
+  if (f.has("filter")) {
+    try {
+      def.filter = parseFilter(f.node("filter"));
+    } catch (const SceneError& e) {
+      throw e.within("filter");
+    }
+  }
   return def;
 }
 

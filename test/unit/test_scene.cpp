@@ -39,7 +39,8 @@ bodies:
     type: static
     position: [0.0, -0.5]
     shapes:
-      - {type: box, size: [20.0, 1.0], friction: 0.9}
+      - {type: box, size: [20.0, 1.0], friction: 0.9,
+         filter: {category: 0x8000000000000000, mask: 6, group: -3}}
   - name: robot/base
     type: kinematic
     position: [1.0, 2.0]
@@ -105,6 +106,9 @@ TEST(SceneParse, ReadsEveryKey) {
   EXPECT_EQ(s.bodies[0].type, BodyType::Static);
   EXPECT_EQ(s.bodies[0].shapes[0].size, Vec2(20.0, 1.0));
   EXPECT_EQ(s.bodies[0].shapes[0].friction, 0.9);
+  EXPECT_EQ(s.bodies[0].shapes[0].filter.categoryBits, uint64_t(1) << 63);
+  EXPECT_EQ(s.bodies[0].shapes[0].filter.maskBits, 6u);
+  EXPECT_EQ(s.bodies[0].shapes[0].filter.groupIndex, -3);
 
   const BodyDef& b = s.bodies[1];
   EXPECT_EQ(b.name, "robot/base");
@@ -207,6 +211,9 @@ TEST(SceneParse, LeftOutKeysTakeTheDefinitionsDefaults) {
   EXPECT_EQ(link.shapes[0].density, shape.density);
   EXPECT_EQ(link.shapes[0].friction, shape.friction);
   EXPECT_EQ(link.shapes[0].restitution, shape.restitution);
+  EXPECT_EQ(link.shapes[0].filter.categoryBits, shape.filter.categoryBits);
+  EXPECT_EQ(link.shapes[0].filter.maskBits, shape.filter.maskBits);
+  EXPECT_EQ(link.shapes[0].filter.groupIndex, shape.filter.groupIndex);
 
   const SceneJoint& hinge = s.joints[4];
   const JointDef joint;
