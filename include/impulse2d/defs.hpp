@@ -154,6 +154,9 @@ struct BodyDef {
   double linearDamping = 0.0;    ///< 1/s
   double angularDamping = 0.0;   ///< 1/s
   bool bullet = false;           ///< continuous collision against every body, not only static ones
+  /// false: a dynamic body is created asleep, as if it had come to rest, and costs nothing until
+  /// something touches it or a method wakes it (a world that does not sleep wakes it at once).
+  bool awake = true;
   double mass = 0.0;  ///< kg; > 0 overrides the shapes' densities (inertia scales with it)
   /// kg m^2 about the centre of mass; > 0 overrides what the shapes give (e.g. a URDF inertial).
   double inertia = 0.0;

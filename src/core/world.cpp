@@ -175,6 +175,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   body.linearDamping = def.linearDamping;
   body.angularDamping = def.angularDamping;
   body.bullet = def.bullet;
+  body.awake = def.awake || def.type != BodyType::Dynamic || !w.def.enableSleep;
   body.minExtent = std::numeric_limits<double>::infinity();
   for (const Shape& shape : body.shapes) {
     body.minExtent = std::min(body.minExtent, innerRadius(shape));

@@ -72,7 +72,7 @@ BodyType parseBodyType(const std::string& type) {
 BodyDef parseBody(const YAML::Node& node) {
   const Fields f(node, "a body",
                  {"name", "type", "position", "angle", "linear_velocity", "angular_velocity",
-                  "linear_damping", "angular_damping", "bullet", "mass", "shapes"});
+                  "linear_damping", "angular_damping", "bullet", "awake", "mass", "shapes"});
   BodyDef def;
   def.name = f.name("name");
   def.type = parseBodyType(f.string("type", "dynamic"));
@@ -83,6 +83,7 @@ BodyDef parseBody(const YAML::Node& node) {
   def.linearDamping = f.number("linear_damping", def.linearDamping);
   def.angularDamping = f.number("angular_damping", def.angularDamping);
   def.bullet = f.boolean("bullet", def.bullet);
+  def.awake = f.boolean("awake", def.awake);
   def.mass = f.number("mass", def.mass);
   if (f.has("shapes")) {
     const YAML::Node& shapes = f.node("shapes");

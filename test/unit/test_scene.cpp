@@ -50,6 +50,7 @@ bodies:
     linear_damping: 0.1
     angular_damping: 0.2
     bullet: true
+    awake: false
     mass: 2.0
     shapes:
       - {type: circle, radius: 0.3, offset: [0.1, 0.2], density: 3.0, restitution: 0.5}
@@ -120,6 +121,7 @@ TEST(SceneParse, ReadsEveryKey) {
   EXPECT_EQ(b.linearDamping, 0.1);
   EXPECT_EQ(b.angularDamping, 0.2);
   EXPECT_TRUE(b.bullet);
+  EXPECT_FALSE(b.awake);
   EXPECT_EQ(b.mass, 2.0);
   ASSERT_EQ(b.shapes.size(), 2u);
   EXPECT_EQ(b.shapes[0].kind, ShapeKind::Circle);
@@ -202,6 +204,7 @@ TEST(SceneParse, LeftOutKeysTakeTheDefinitionsDefaults) {
   EXPECT_EQ(link.linearDamping, body.linearDamping);
   EXPECT_EQ(link.angularDamping, body.angularDamping);
   EXPECT_EQ(link.bullet, body.bullet);
+  EXPECT_EQ(link.awake, body.awake);
   EXPECT_EQ(link.mass, body.mass);
   const ShapeDef shape;
   EXPECT_EQ(link.shapes[0].kind, ShapeKind::Box);
