@@ -2,8 +2,12 @@
 # installed (libbox2d-dev, libchipmunk-dev). The package never depends on them: each adapter is
 # compiled in only when its library is found, and a compile definition says so.
 add_executable(impulse2d_bench
+  bench/bench_human.cpp
   bench/bench_main.cpp
   bench/bench_scenes.cpp
+  bench/bench_scenes_v3.cpp
+  bench/bench_shapes.cpp
+  bench/engine_common.cpp
   bench/impulse2d_adapter.cpp
   bench/memory_probe.cpp
   bench/metrics.cpp)
