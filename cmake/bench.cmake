@@ -37,6 +37,31 @@ else()
   message(STATUS "impulse2d_bench: Chipmunk not found (libchipmunk-dev), benchmarking without it")
 endif()
 
+# Box2D v3 is not packaged: point IMPULSE2D_BENCH_BOX2D_V3_DIR at a v3 install tree (a folder
+# with include/box2d/box2d.h and libbox2d.a in lib/, lib64/ or src/). Its workers run on oneTBB
+# (libtbb-dev). Off unless set; CI never sets it. Its headers share Box2D 2.4's
+# <box2d/box2d.h>, so only its adapter sees them.
+set(IMPULSE2D_BENCH_BOX2D_V3_DIR "" CACHE PATH
+  "A Box2D v3 build or install to benchmark against (include/box2d and libbox2d.a); empty: none")
+if(IMPULSE2D_BENCH_BOX2D_V3_DIR)
+  find_path(IMPULSE2D_BOX2D_V3_INCLUDE_DIR box2d/box2d.h
+    PATHS ${IMPULSE2D_BENCH_BOX2D_V3_DIR}/include NO_DEFAULT_PATH)
+  find_library(IMPULSE2D_BOX2D_V3_LIBRARY NAMES libbox2d.a
+    PATHS ${IMPULSE2D_BENCH_BOX2D_V3_DIR}
+    PATH_SUFFIXES lib lib64 src NO_DEFAULT_PATH)
+  if(NOT IMPULSE2D_BOX2D_V3_INCLUDE_DIR OR NOT IMPULSE2D_BOX2D_V3_LIBRARY)
+    message(FATAL_ERROR "IMPULSE2D_BENCH_BOX2D_V3_DIR=${IMPULSE2D_BENCH_BOX2D_V3_DIR} holds no "
+      "include/box2d/box2d.h and libbox2d.a (a Box2D v3 build or install)")
+  endif()
+  find_package(TBB REQUIRED)  # libtbb-dev
+  message(STATUS "impulse2d_bench: with Box2D v3 (${IMPULSE2D_BOX2D_V3_LIBRARY}, workers on oneTBB)")
+  target_sources(impulse2d_bench PRIVATE bench/box2d_v3_adapter.cpp)
+  set_source_files_properties(bench/box2d_v3_adapter.cpp PROPERTIES
+    COMPILE_OPTIONS "-isystem;${IMPULSE2D_BOX2D_V3_INCLUDE_DIR}")
+  target_link_libraries(impulse2d_bench PRIVATE ${IMPULSE2D_BOX2D_V3_LIBRARY} TBB::tbb)
+  target_compile_definitions(impulse2d_bench PRIVATE IMPULSE2D_BENCH_BOX2D_V3)
+endif()
+
 if(NOT IMPULSE2D_CORE_ONLY)
   install(TARGETS impulse2d_bench RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()
