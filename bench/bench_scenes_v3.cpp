@@ -61,6 +61,19 @@ BenchJoint pin(int a, int b, const Vec2& anchor) {
   return joint;
 }
 
+// Boxes of half-width `extent` in rows of base .. 1, as CreateLargePyramid and
+// CreateSmallPyramid place them: row i at y = (2i + 1) extent + baseY, its first box at
+// x = (i + 1) extent + left.
+void addPyramid(SceneSpec& scene, int base, double extent, double left, double baseY) {
+  for (int i = 0; i < base; ++i) {
+    const double y = (2.0 * i + 1.0) * extent + baseY;
+    for (int j = i; j < base; ++j) {
+      const double x = (i + 1.0) * extent + 2.0 * (j - i) * extent + left;
+      add(scene, body(Vec2(x, y), false, box(extent, extent)));
+    }
+  }
+}
+
 // CreateJointGrid: N x N circles 1 m apart in columns k (x = k) and rows i (y = -i), each pinned
 // to the one above and the one to its left midway between them; the middle seven of the top row
 // are static. The circles' filter (category 2, mask ~2) keeps them from ever touching each other.
@@ -94,14 +107,7 @@ SceneSpec largePyramid(bool quick) {
   scene.tolerance = 0.10;
   const int base = quick ? 20 : 100;
   add(scene, body(Vec2(0.0, -1.0), true, box(100.0, 1.0)));
-  const double h = 0.5;
-  for (int i = 0; i < base; ++i) {
-    const double y = (2.0 * i + 1.0) * h;
-    for (int j = i; j < base; ++j) {
-      const double x = (i + 1.0) * h + 2.0 * (j - i) * h - h * base;
-      add(scene, body(Vec2(x, y), false, box(h, h)));
-    }
-  }
+  addPyramid(scene, base, 0.5, -0.5 * base, 0.0);
   return scene;
 }
 
@@ -129,13 +135,7 @@ SceneSpec manyPyramids(bool quick) {
     for (int column = 0; column < columnCount; ++column) {
       const double centerX =
           -0.5 * groundWidth + column * (baseWidth + 2.0 * extent) + extent;  // CreateSmallPyramid
-      for (int i = 0; i < baseCount; ++i) {
-        const double y = (2.0 * i + 1.0) * extent + baseY;
-        for (int j = i; j < baseCount; ++j) {
-          const double x = (i + 1.0) * extent + 2.0 * (j - i) * extent + centerX - 0.5;
-          add(scene, body(Vec2(x, y), false, box(extent, extent)));
-        }
-      }
+      addPyramid(scene, baseCount, extent, centerX - 0.5, baseY);
     }
     baseY += groundDeltaY;
   }

@@ -34,26 +34,14 @@ bool fitsFilter(const impulse2d::CollisionFilter& f) {
   return f.categoryBits <= 0xFFFF && f.groupIndex >= INT16_MIN && f.groupIndex <= INT16_MAX;
 }
 
-class Box2dAdapter : public EngineAdapter {
+class Box2dAdapter : public GroupedAdapter<b2Body*> {
  public:
   void build(const SceneSpec& scene, const EngineSettings& settings) override {
-    scene_ = &scene;
-    groups_ = std::make_unique<SceneGroups>(scene);
+    startScene(scene, nullptr);
     settings_ = settings;
     world_ = std::make_unique<b2World>(toB2(scene.gravity));
     world_->SetAllowSleeping(scene.sleep);
-    bodies_.assign(scene.bodies.size(), nullptr);
     createGroup(-1);
-  }
-  void createGroup(int group) override {
-    for (const int i : groups_->bodies(group)) bodies_[i] = createBody(scene_->bodies[i]);
-    for (const int j : groups_->joints(group)) createJoint(scene_->joints[j]);
-  }
-  void destroyGroup(int group) override {
-    for (const int i : groups_->bodies(group)) {
-      world_->DestroyBody(bodies_[i]);  // and its joints
-      bodies_[i] = nullptr;
-    }
   }
   void step() override {
     world_->Step(static_cast<float>(settings_.timeStep), settings_.velocityIterations,
@@ -81,7 +69,8 @@ class Box2dAdapter : public EngineAdapter {
   }
 
  private:
-  b2Body* createBody(const BenchBody& body) {
+  b2Body* createBody(int index) override {
+    const BenchBody& body = scene_->bodies[index];
     b2BodyDef def;
     def.type = body.isStatic ? b2_staticBody : b2_dynamicBody;
     def.position = toB2(body.position);
@@ -130,7 +119,8 @@ class Box2dAdapter : public EngineAdapter {
     }
     b->CreateFixture(&fixture);
   }
-  void createJoint(const BenchJoint& joint) {
+  void createJoint(int index) override {
+    const BenchJoint& joint = scene_->joints[index];
     b2RevoluteJointDef def;
     def.Initialize(bodies_[joint.bodyA], bodies_[joint.bodyB], toB2(joint.anchor));
     def.referenceAngle = static_cast<float>(joint.referenceAngle);
@@ -143,11 +133,10 @@ class Box2dAdapter : public EngineAdapter {
     world_->CreateJoint(&def);
   }
 
-  const SceneSpec* scene_ = nullptr;
-  std::unique_ptr<SceneGroups> groups_;
+  void destroyBody(int index) override { world_->DestroyBody(bodies_[index]); }  // and joints
+
   EngineSettings settings_;
   std::unique_ptr<b2World> world_;
-  std::vector<b2Body*> bodies_;
 };
 
 }  // namespace

@@ -56,14 +56,13 @@ class TbbTasks {
   size_t used_ = 0;
 };
 
-class Box2dV3Adapter : public EngineAdapter {
+class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
  public:
   ~Box2dV3Adapter() override {
     if (b2World_IsValid(world_)) b2DestroyWorld(world_);
   }
   void build(const SceneSpec& scene, const EngineSettings& settings) override {
-    scene_ = &scene;
-    groups_ = std::make_unique<SceneGroups>(scene);
+    startScene(scene, b2_nullBodyId);
     settings_ = settings;
     b2WorldDef def = b2DefaultWorldDef();
     def.gravity = toB2(scene.gravity);
@@ -76,18 +75,7 @@ class Box2dV3Adapter : public EngineAdapter {
       def.userTaskContext = tasks_.get();
     }
     world_ = b2CreateWorld(&def);
-    bodies_.assign(scene.bodies.size(), b2_nullBodyId);
     createGroup(-1);
-  }
-  void createGroup(int group) override {
-    for (const int i : groups_->bodies(group)) bodies_[i] = createBody(scene_->bodies[i]);
-    for (const int j : groups_->joints(group)) createJoint(scene_->joints[j]);
-  }
-  void destroyGroup(int group) override {
-    for (const int i : groups_->bodies(group)) {
-      b2DestroyBody(bodies_[i]);  // and its joints
-      bodies_[i] = b2_nullBodyId;
-    }
   }
   void step() override {
     b2World_Step(world_, static_cast<float>(settings_.timeStep), settings_.velocityIterations);
@@ -127,7 +115,8 @@ class Box2dV3Adapter : public EngineAdapter {
   }
 
  private:
-  b2BodyId createBody(const BenchBody& body) {
+  b2BodyId createBody(int index) override {
+    const BenchBody& body = scene_->bodies[index];
     b2BodyDef def = b2DefaultBodyDef();
     def.type = body.isStatic ? b2_staticBody : b2_dynamicBody;
     def.position = toB2(body.position);
@@ -182,7 +171,8 @@ class Box2dV3Adapter : public EngineAdapter {
       }
     }
   }
-  void createJoint(const BenchJoint& joint) {
+  void createJoint(int index) override {
+    const BenchJoint& joint = scene_->joints[index];
     b2RevoluteJointDef def = b2DefaultRevoluteJointDef();
     def.bodyIdA = bodies_[joint.bodyA];
     def.bodyIdB = bodies_[joint.bodyB];
@@ -201,12 +191,11 @@ class Box2dV3Adapter : public EngineAdapter {
     b2CreateRevoluteJoint(world_, &def);
   }
 
-  const SceneSpec* scene_ = nullptr;
-  std::unique_ptr<SceneGroups> groups_;
+  void destroyBody(int index) override { b2DestroyBody(bodies_[index]); }  // and its joints
+
   EngineSettings settings_;
   std::unique_ptr<TbbTasks> tasks_;
   b2WorldId world_ = b2_nullWorldId;
-  std::vector<b2BodyId> bodies_;
 };
 
 }  // namespace

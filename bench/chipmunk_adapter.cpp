@@ -21,14 +21,13 @@ void dampedVelocity(cpBody* body, cpVect gravity, cpFloat damping, cpFloat dt) {
   cpBodyUpdateVelocity(body, gravity, damping * std::exp(-rate * dt), dt);
 }
 
-class ChipmunkAdapter : public EngineAdapter {
+class ChipmunkAdapter : public GroupedAdapter<cpBody*> {
  public:
   ~ChipmunkAdapter() override { release(); }
 
   void build(const SceneSpec& scene, const EngineSettings& settings) override {
     release();
-    scene_ = &scene;
-    groups_ = std::make_unique<SceneGroups>(scene);
+    startScene(scene, nullptr);
     timeStep_ = settings.timeStep;
     space_ = cpSpaceNew();
     cpSpaceSetGravity(space_, toCp(scene.gravity));
@@ -36,34 +35,10 @@ class ChipmunkAdapter : public EngineAdapter {
     if (scene.sleep) cpSpaceSetSleepTimeThreshold(space_, 0.5);  // as Box2D and impulse2d
     // "default" keeps Chipmunk's own slop (0.1) and bias; "slop5mm" uses the other engines' slop.
     if (settings.solver == "slop5mm") cpSpaceSetCollisionSlop(space_, 0.005);
-    bodies_.assign(scene.bodies.size(), nullptr);
     shapes_.assign(scene.bodies.size(), {});
     constraints_.assign(scene.joints.size(), {});
     damping_.assign(scene.bodies.size(), 0.0);
     createGroup(-1);
-  }
-  void createGroup(int group) override {
-    for (const int i : groups_->bodies(group)) createBody(i);
-    for (const int j : groups_->joints(group)) createJoint(j);
-  }
-  void destroyGroup(int group) override {
-    for (const int j : groups_->joints(group)) {
-      for (cpConstraint* c : constraints_[j]) {
-        cpSpaceRemoveConstraint(space_, c);
-        cpConstraintFree(c);
-      }
-      constraints_[j].clear();
-    }
-    for (const int i : groups_->bodies(group)) {
-      for (cpShape* s : shapes_[i]) {
-        cpSpaceRemoveShape(space_, s);
-        cpShapeFree(s);
-      }
-      shapes_[i].clear();
-      cpSpaceRemoveBody(space_, bodies_[i]);
-      cpBodyFree(bodies_[i]);
-      bodies_[i] = nullptr;
-    }
   }
   void step() override { cpSpaceStep(space_, timeStep_); }
   void read(std::vector<BodyState>* states) const override {
@@ -98,7 +73,7 @@ class ChipmunkAdapter : public EngineAdapter {
   }
 
  private:
-  void createBody(int index) {
+  cpBody* createBody(int index) override {
     const BenchBody& body = scene_->bodies[index];
     cpBody* b = nullptr;
     if (body.isStatic) {
@@ -130,7 +105,23 @@ class ChipmunkAdapter : public EngineAdapter {
       shapes_[index].push_back(s);
     }
     if (!body.isStatic && !body.awake && scene_->sleep) cpBodySleep(b);
-    bodies_[index] = b;
+    return b;
+  }
+  void destroyJoint(int index) override {
+    for (cpConstraint* c : constraints_[index]) {
+      cpSpaceRemoveConstraint(space_, c);
+      cpConstraintFree(c);
+    }
+    constraints_[index].clear();
+  }
+  void destroyBody(int index) override {
+    for (cpShape* s : shapes_[index]) {
+      cpSpaceRemoveShape(space_, s);
+      cpShapeFree(s);
+    }
+    shapes_[index].clear();
+    cpSpaceRemoveBody(space_, bodies_[index]);
+    cpBodyFree(bodies_[index]);
   }
   static cpShape* makeShape(cpBody* b, const BenchShape& shape) {
     switch (shape.kind) {
@@ -153,7 +144,7 @@ class ChipmunkAdapter : public EngineAdapter {
     return cpPolyShapeNew(b, static_cast<int>(points.size()), points.data(), cpTransformIdentity,
                           shape.radius);
   }
-  void createJoint(int index) {
+  void createJoint(int index) override {
     const BenchJoint& joint = scene_->joints[index];
     cpBody* a = bodies_[joint.bodyA];
     cpBody* b = bodies_[joint.bodyB];
@@ -203,11 +194,8 @@ class ChipmunkAdapter : public EngineAdapter {
     bodies_.clear();
   }
 
-  const SceneSpec* scene_ = nullptr;
-  std::unique_ptr<SceneGroups> groups_;
   double timeStep_ = 1.0 / 60.0;
   cpSpace* space_ = nullptr;
-  std::vector<cpBody*> bodies_;                          // per scene body, null when absent
   std::vector<std::vector<cpShape*>> shapes_;            // per scene body
   std::vector<std::vector<cpConstraint*>> constraints_;  // per scene joint
   std::vector<double> damping_;                          // per scene body, read by dampedVelocity

@@ -87,4 +87,42 @@ class SceneGroups {
   std::vector<std::vector<int>> bodies_, joints_;
 };
 
+/// The part of an adapter that is the same for every engine: the scene's event groups created
+/// and destroyed through the engine's own createBody, createJoint and destroyBody (and
+/// destroyJoint, for engines whose bodies do not take their joints along). `Handle` names a body.
+template <typename Handle>
+class GroupedAdapter : public EngineAdapter {
+ public:
+  void createGroup(int group) final {
+    for (const int i : groups_->bodies(group)) bodies_[i] = createBody(i);
+    for (const int j : groups_->joints(group)) createJoint(j);
+  }
+  void destroyGroup(int group) final {
+    for (const int j : groups_->joints(group)) destroyJoint(j);
+    for (const int i : groups_->bodies(group)) {
+      destroyBody(i);
+      bodies_[i] = none_;
+    }
+  }
+
+ protected:
+  /// Called first by build(): no body exists yet; `none` marks an absent one.
+  void startScene(const SceneSpec& scene, const Handle& none) {
+    scene_ = &scene;
+    groups_ = std::make_unique<SceneGroups>(scene);
+    none_ = none;
+    bodies_.assign(scene.bodies.size(), none);
+  }
+  /// Scene body and joint indices; the bodies a joint names exist.
+  virtual Handle createBody(int body) = 0;
+  virtual void createJoint(int joint) = 0;
+  virtual void destroyBody(int body) = 0;
+  virtual void destroyJoint(int /*joint*/) {}
+
+  const SceneSpec* scene_ = nullptr;
+  std::unique_ptr<SceneGroups> groups_;
+  std::vector<Handle> bodies_;  ///< per scene body
+  Handle none_{};
+};
+
 }  // namespace impulse2d_bench

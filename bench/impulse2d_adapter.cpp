@@ -27,11 +27,10 @@ const std::vector<SolverEntry>& solvers() {
   return list;
 }
 
-class Impulse2dAdapter : public EngineAdapter {
+class Impulse2dAdapter : public GroupedAdapter<BodyId> {
  public:
   void build(const SceneSpec& scene, const EngineSettings& settings) override {
-    scene_ = &scene;
-    groups_ = std::make_unique<SceneGroups>(scene);
+    startScene(scene, BodyId());
     WorldDef def;
     def.gravity = scene.gravity;
     def.timeStep = settings.timeStep;
@@ -42,18 +41,7 @@ class Impulse2dAdapter : public EngineAdapter {
       if (entry.name == settings.solver) def.solver = entry.type;
     }
     world_ = std::make_unique<World>(def);
-    bodies_.assign(scene.bodies.size(), BodyId());
     createGroup(-1);
-  }
-  void createGroup(int group) override {
-    for (const int i : groups_->bodies(group)) bodies_[i] = createBody(scene_->bodies[i]);
-    for (const int j : groups_->joints(group)) createJoint(scene_->joints[j]);
-  }
-  void destroyGroup(int group) override {
-    for (const int i : groups_->bodies(group)) {
-      world_->destroyBody(bodies_[i]);  // and its joints
-      bodies_[i] = BodyId();
-    }
   }
   void step() override { world_->step(); }
   void read(std::vector<BodyState>* states) const override {
@@ -70,7 +58,8 @@ class Impulse2dAdapter : public EngineAdapter {
   size_t contactCount() const override { return world_->contactCount(); }
 
  private:
-  BodyId createBody(const BenchBody& body) {
+  BodyId createBody(int index) override {
+    const BenchBody& body = scene_->bodies[index];
     BodyDef def;
     def.type = body.isStatic ? BodyType::Static : BodyType::Dynamic;
     def.position = body.position;
@@ -101,7 +90,8 @@ class Impulse2dAdapter : public EngineAdapter {
     if (!id.valid()) throw std::runtime_error("impulse2d refused a body: " + error);
     return id;
   }
-  void createJoint(const BenchJoint& joint) {
+  void createJoint(int index) override {
+    const BenchJoint& joint = scene_->joints[index];
     JointDef def;
     def.type = JointType::Revolute;
     def.bodyA = bodies_[joint.bodyA];
@@ -122,10 +112,9 @@ class Impulse2dAdapter : public EngineAdapter {
     }
   }
 
-  const SceneSpec* scene_ = nullptr;
-  std::unique_ptr<SceneGroups> groups_;
+  void destroyBody(int index) override { world_->destroyBody(bodies_[index]); }  // and joints
+
   std::unique_ptr<World> world_;
-  std::vector<BodyId> bodies_;
 };
 
 }  // namespace
