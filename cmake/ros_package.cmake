@@ -5,9 +5,13 @@ find_package(catkin REQUIRED COMPONENTS
 
 add_message_files(DIRECTORY msg FILES
   Body.msg Contact.msg ContactArray.msg Joint.msg JointCommand.msg Shape.msg)
+# ~removed_bodies
+add_message_files(DIRECTORY msg FILES RemovedBodies.msg RemovedBody.msg)
 add_service_files(DIRECTORY srv FILES
   ApplyWrench.srv CreateJoint.srv DeleteBody.srv DeleteJoint.srv GetBodyState.srv LoadScene.srv
   SetBodyState.srv SetJointMotor.srv SpawnBody.srv SpawnUrdf.srv Step.srv)
+# ~get_body_properties
+add_service_files(DIRECTORY srv FILES GetBodyProperties.srv)
 generate_messages(DEPENDENCIES geometry_msgs std_msgs)
 
 catkin_package(

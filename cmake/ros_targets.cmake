@@ -38,7 +38,8 @@ if(CATKIN_ENABLE_TESTING)
     test/ros/world_test_main.cpp
     test/ros/world_test_util.cpp
     test/ros/services_test.cpp
-    test/ros/topics_test.cpp)
+    test/ros/topics_test.cpp
+    test/ros/defaults_test.cpp)
   target_link_libraries(impulse2d_world_tests ${catkin_LIBRARIES})
   add_dependencies(impulse2d_world_tests impulse2d_node impulse2d_nodelet
     ${PROJECT_NAME}_generate_messages_cpp)

@@ -38,6 +38,7 @@ struct Body {
   bool awake = true;
   double sleepTime = 0.0;  ///< s the body has been still
   int islandFlag = 0;      ///< scratch for island building
+  bool lost = false;       ///< reported lost for good (World::takeLostBodies), not back since
 
   /// Velocity of a world point attached to the body.
   Vec2 velocityAt(const Vec2& worldPoint) const {

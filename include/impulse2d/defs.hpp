@@ -109,6 +109,18 @@ struct WorldDef {
   double timeToSleep = 0.5;              ///< s an island must be still before it sleeps
   double sleepLinearTolerance = 0.01;    ///< m/s, slower counts as still
   double sleepAngularTolerance = 0.035;  ///< rad/s (2 degrees/s)
+  /// Remove a dynamic body as soon as it is lost for good (World::takeLostBodies: fallen below
+  /// every static body by more than their extent along gravity, with nothing to catch or hold
+  /// it) instead of only reporting it and letting it fall until it leaves kWorldExtent.
+  bool removeLostBodies = false;
+};
+
+/// Why a step removed a body.
+enum class RemovalCause {
+  LeftWorldExtent,  ///< its centre of mass left kWorldExtent (limits.hpp)
+  Overflow,         ///< pushed faster than kWorldExtent per step (a force too large for its
+                    ///< mass), or its state stopped being finite
+  LostForGood,      ///< lost for good below the static bodies, with WorldDef::removeLostBodies
 };
 
 enum class ShapeKind { Box, Circle, Polygon };

@@ -32,9 +32,9 @@ constexpr double kMaxCoordinate = 1e6;
 constexpr double kMaxSpeed = 1e6;
 /// N and N m: the largest force or torque one call may apply.
 constexpr double kMaxForce = 1e12;
-/// m. A body whose centre of mass leaves this box (on either axis), or whose state stops being
-/// finite, is removed at the end of the step and reported by World::takeRemovedBodies(),
-/// instead of being computed on as inf or NaN.
+/// m. A body whose centre of mass leaves this box (on either axis), or that a force pushes faster
+/// than this per step (or whose state stops being finite), is removed at the end of the step
+/// and reported by World::takeRemovedBodies(), instead of being computed on as inf or NaN.
 constexpr double kWorldExtent = 1e7;
 
 }  // namespace impulse2d

@@ -32,10 +32,24 @@ struct JointState {
 
 /// A body that a step removed because it left the world (limits.hpp, docs/security.md).
 struct RemovedBody {
-  BodyId id;                     ///< no longer valid
+  BodyId id;  ///< no longer valid
   std::string name;
   Vec2 position = Vec2::Zero();  ///< its origin when removed (may be inf or NaN)
-  std::string reason;            ///< e.g. "left the world extent of 1e7 m"
+  std::string reason;            ///< e.g. "it left the world extent of 1e7 m"
+  RemovalCause cause = RemovalCause::LeftWorldExtent;
+};
+
+/// A dynamic body that a step found lost for good: awake, below every static and kinematic body,
+/// along gravity, by more than the static bodies' own extent along gravity (their bounding box),
+/// joined by no joint to anything that is not as far down, and not rising with the bodies its
+/// joints join it to. Nothing is left to stop it: it falls until it leaves kWorldExtent. See
+/// WorldDef::removeLostBodies.
+struct LostBody {
+  BodyId id;  ///< still valid when reported by takeLostBodies()
+  std::string name;
+  Vec2 position = Vec2::Zero();  ///< its origin when found lost
+  double depth = 0.0;            ///< m from the lowest static point down to the body's top
+  std::string reason;            ///< e.g. "it fell 3.2 m below every static body ..."
 };
 
 struct WorldImpl;
@@ -107,9 +121,15 @@ class World {
   /// kept between calls; removedBodyCount() counts them all.
   std::vector<RemovedBody> takeRemovedBodies();
   uint64_t removedBodyCount() const;
+  /// Bodies that steps found lost for good since the last call, oldest first, each once (again
+  /// only after it came back), and left in the world because WorldDef::removeLostBodies is off
+  /// (with it on they are removed and reported by takeRemovedBodies()). Needs a static body and
+  /// non-zero gravity. At most 1024 are kept between calls; lostBodyCount() counts them all.
+  std::vector<LostBody> takeLostBodies();
+  uint64_t lostBodyCount() const;
 
  private:
-  /// The step stage behind takeRemovedBodies() (world_bounds.cpp).
+  /// The step stage behind takeRemovedBodies() and takeLostBodies() (world_bounds.cpp).
   void removeEscapedBodies();
 
   std::unique_ptr<WorldImpl> impl_;

@@ -188,6 +188,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   w.createProxies(body);
   w.shapeCount += body.shapes.size();
   if (!def.name.empty()) w.bodyByName[def.name] = slot;
+  if (def.type == BodyType::Static) w.staticBodiesChanged();
   return body.id;
 }
 
@@ -202,6 +203,7 @@ bool World::destroyBody(BodyId id) {
   }
   w.destroyContactsOf(id.index);
   Body& body = w.bodies.items[id.index];
+  if (body.type == BodyType::Static) w.staticBodiesChanged();
   w.destroyProxies(body);
   w.shapeCount -= body.shapes.size();
   if (!body.name.empty()) w.bodyByName.erase(body.name);
@@ -385,6 +387,7 @@ bool World::setTransform(BodyId id, const Vec2& position, double angle) {
   body.center = body.xf.apply(body.localCenter);
   impl_->updateProxies(body, true);
   impl_->wakeBody(body);
+  if (body.type == BodyType::Static) impl_->staticBodiesChanged();
   return true;
 }
 

@@ -1,12 +1,15 @@
-// The step stage that keeps the world finite: a body that flew beyond kWorldExtent, or whose
-// state overflowed to inf or NaN (an absurd force, a collapsing constraint), is removed with its
+// The step stage that keeps the world finite and says what it lost. A body that flew beyond
+// kWorldExtent, or whose velocity overflowed (integrateVelocities froze it), is removed with its
 // joints and contacts and reported, rather than left to poison the broad phase and its
-// neighbours with non-finite numbers on the next step.
+// neighbours with non-finite numbers. A body that fell below every static body, with nothing
+// left that could stop it, is reported as lost for good, and removed then if the world says so.
 #include "world_impl.hpp"
 
 #include <impulse2d/limits.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,42 +17,193 @@
 namespace impulse2d {
 namespace {
 
-// Reports kept between two takeRemovedBodies() calls; a caller that never asks cannot make the
-// list grow without bound.
-constexpr size_t kMaxRemovedReports = 1024;
+// Reports kept between two take...() calls; a caller that never asks cannot make the lists grow
+// without bound.
+constexpr size_t kMaxReports = 1024;
 
-// Empty while the body may stay, else why it goes.
-std::string escapeReason(const Body& body) {
+// Null while the body may stay, else why it goes.
+const char* escapeReason(const Body& body, RemovalCause* cause) {
   const bool finite = isFinite(body.center) && isFinite(body.xf.p) && std::isfinite(body.angle) &&
                       isFinite(body.linearVelocity) && std::isfinite(body.angularVelocity);
-  if (!finite) return "its state stopped being finite";
+  if (!finite) {
+    *cause = RemovalCause::Overflow;
+    return "its state stopped being finite";
+  }
   if (std::abs(body.center.x()) > kWorldExtent || std::abs(body.center.y()) > kWorldExtent) {
+    *cause = RemovalCause::LeftWorldExtent;
     return "it left the world extent of 1e7 m";
   }
-  return "";
+  return nullptr;
+}
+
+std::string metres(double m) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4g m", m);
+  return text;
+}
+
+// Where "down" is (along gravity, whatever its direction) and how deep the static bodies reach:
+//
+//      -----------------------   <- shallowest static point   }
+//        | static bodies |                                     } height
+//      -----------------------   <- deepest static point      }
+//                  :                                           } height
+//   - - - - - - - - - - - - - - - - - - - - - - - - - - - - -  <- deepest + height
+//              [ ]  a body whose top is below this line, not rising: lost for good
+//
+// Measured on the static bodies' bounding box, kept until they change: along a slanted gravity
+// its corners reach a little deeper than the shapes do, which only makes the line lower.
+struct Floor {
+  Vec2 down = Vec2::Zero();
+  double deepest = 0.0;
+  double height = 0.0;
+
+  double top(const Body& body) const { return down.dot(body.center) - body.maxExtent; }
+  double bottom(const Body& body) const { return down.dot(body.center) + body.maxExtent; }
+};
+
+// How far the box reaches along d: the largest dot(p, d) over its corners.
+double deepestCorner(const Aabb& box, const Vec2& d) {
+  return std::max(box.lower.x() * d.x(), box.upper.x() * d.x()) +
+         std::max(box.lower.y() * d.y(), box.upper.y() * d.y());
 }
 
 }  // namespace
 
+void WorldImpl::refreshStaticBounds() {
+  if (!staticBoundsStale) return;
+  staticBoundsStale = false;
+  hasStaticBodies = false;
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    const Body& body = bodies.items[i];
+    if (!bodies.alive[i] || body.type != BodyType::Static) continue;
+    for (const Shape& shape : body.shapes) {
+      const Aabb box = computeAabb(shape, body.xf);
+      staticBounds = hasStaticBodies ? staticBounds.united(box) : box;
+      hasStaticBodies = true;
+    }
+  }
+}
+
+void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
+  const double g = def.gravity.norm();
+  if (!(g > 0.0)) return;  // nothing falls (top-down scenes): nothing is lost below
+  refreshStaticBounds();
+  if (!hasStaticBodies) return;  // nothing to fall off
+  Floor floor;
+  floor.down = def.gravity / g;
+  floor.deepest = deepestCorner(staticBounds, floor.down);
+  floor.height = floor.deepest + deepestCorner(staticBounds, -floor.down);
+
+  // Awake dynamic bodies only: a sleeping one rests on something, and static bodies cost
+  // nothing here.
+  std::vector<int>& candidates = lostCandidates;
+  candidates.clear();
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    Body& body = bodies.items[i];
+    if (!bodies.alive[i] || body.type != BodyType::Dynamic || !body.awake) continue;
+    if (floor.top(body) > floor.deepest + floor.height) {
+      candidates.push_back(static_cast<int>(i));
+    } else {
+      body.lost = false;  // back, or never gone
+    }
+  }
+  if (candidates.empty()) return;
+
+  // A kinematic body below the static ones may still catch it.
+  double floorLine = floor.deepest;
+  for (size_t i = 0; i < bodies.items.size(); ++i) {
+    const Body& body = bodies.items[i];
+    if (bodies.alive[i] && body.type == BodyType::Kinematic) {
+      floorLine = std::max(floorLine, floor.bottom(body));
+    }
+  }
+  // 0: not a candidate, 1: a candidate, 2: a candidate already grouped.
+  std::vector<char>& mark = lostCandidateMark;
+  mark.assign(bodies.items.size(), 0);
+  for (const int slot : candidates) {
+    const bool below = floor.top(bodies.items[slot]) > floorLine + floor.height;
+    mark[slot] = below ? 1 : 0;
+    if (!below) bodies.items[slot].lost = false;
+  }
+
+  // Bodies joined by joints go together: a joint to anything that is not below (a body above,
+  // a static pin) holds the whole group (a chain hanging from a ledge, a rope over the edge),
+  // and a group that rises as a whole (thrown up, bouncing off another) may still come back.
+  std::vector<int>& group = lostGroup;
+  for (const int first : candidates) {
+    if (mark[first] != 1) continue;
+    group.assign(1, first);
+    mark[first] = 2;
+    bool held = false;
+    double momentumDown = 0.0;
+    for (size_t k = 0; k < group.size(); ++k) {
+      const Body& body = bodies.items[group[k]];
+      momentumDown += body.mass * floor.down.dot(body.linearVelocity);
+      for (const int j : jointsOfBody[group[k]]) {
+        const Joint& joint = joints.items[j];
+        const int other = joint.bodyA == group[k] ? joint.bodyB : joint.bodyA;
+        if (mark[other] == 0) held = true;
+        if (mark[other] == 1) {
+          mark[other] = 2;
+          group.push_back(other);
+        }
+      }
+    }
+    for (const int slot : group) {
+      Body& body = bodies.items[slot];
+      const bool lost = !held && momentumDown >= 0.0;
+      const bool reported = body.lost;
+      body.lost = lost;
+      if (!lost || (reported && !def.removeLostBodies)) continue;
+      const double depth = floor.top(body) - floor.deepest;
+      std::string reason = "lost for good: it fell " + metres(depth) +
+                           " below every static body, more than their height of " +
+                           metres(floor.height) + ", and nothing can stop it";
+      if (def.removeLostBodies) {
+        removeLost->push_back(RemovedBody{body.id, body.name, body.xf.p, std::move(reason),
+                                          RemovalCause::LostForGood});
+        continue;
+      }
+      ++lostBodyCount;
+      if (lostBodies.size() < kMaxReports) {
+        lostBodies.push_back(LostBody{body.id, body.name, body.xf.p, depth, std::move(reason)});
+      }
+    }
+  }
+}
+
 void World::removeEscapedBodies() {
   WorldImpl& w = *impl_;
-  std::vector<std::pair<BodyId, std::string>> escaped;
-  for (size_t i = 0; i < w.bodies.items.size(); ++i) {
-    const Body& body = w.bodies.items[i];
-    // Static bodies are checked too: they never move, but a non-finite impulse from a body
-    // gone wrong writes NaN into their velocities all the same, and would spread from there.
-    if (!w.bodies.alive[i]) continue;
-    std::string reason = escapeReason(body);
-    if (!reason.empty()) escaped.emplace_back(body.id, std::move(reason));
-  }
-  for (auto& [id, reason] : escaped) {
-    const Body& body = w.bodies.items[id.index];
-    if (w.removedBodies.size() < kMaxRemovedReports) {
-      w.removedBodies.push_back(RemovedBody{id, body.name, body.xf.p, std::move(reason)});
-    }
+  auto remove = [&w, this](RemovedBody report) {
+    const BodyId id = report.id;
+    if (w.removedBodies.size() < kMaxReports) w.removedBodies.push_back(std::move(report));
     ++w.removedBodyCount;
     destroyBody(id);
+  };
+  for (const int slot : w.overflowedBodies) {
+    if (!w.bodies.alive[slot]) continue;
+    const Body& body = w.bodies.items[slot];
+    remove(RemovedBody{body.id, body.name, body.xf.p,
+                       "it was pushed faster than 1e7 m per step (a force too large for its mass)",
+                       RemovalCause::Overflow});
   }
+  w.overflowedBodies.clear();
+  // Only what moves can leave: static bodies never do (the solver never writes them), and
+  // sleeping ones have not moved since they were checked.
+  std::vector<RemovedBody> escaped;
+  for (size_t i = 0; i < w.bodies.items.size(); ++i) {
+    const Body& body = w.bodies.items[i];
+    if (!w.bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+    RemovalCause cause;
+    if (const char* why = escapeReason(body, &cause)) {
+      escaped.push_back(RemovedBody{body.id, body.name, body.xf.p, why, cause});
+    }
+  }
+  for (RemovedBody& report : escaped) remove(std::move(report));
+  escaped.clear();
+  w.findLostBodies(&escaped);
+  for (RemovedBody& report : escaped) remove(std::move(report));
 }
 
 std::vector<RemovedBody> World::takeRemovedBodies() {
@@ -59,5 +213,13 @@ std::vector<RemovedBody> World::takeRemovedBodies() {
 }
 
 uint64_t World::removedBodyCount() const { return impl_->removedBodyCount; }
+
+std::vector<LostBody> World::takeLostBodies() {
+  std::vector<LostBody> out;
+  out.swap(impl_->lostBodies);
+  return out;
+}
+
+uint64_t World::lostBodyCount() const { return impl_->lostBodyCount; }
 
 }  // namespace impulse2d

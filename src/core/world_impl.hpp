@@ -154,6 +154,20 @@ struct WorldImpl {
   // Bodies that left kWorldExtent or stopped being finite (world_bounds.cpp).
   std::vector<RemovedBody> removedBodies;  // since the last World::takeRemovedBodies()
   uint64_t removedBodyCount = 0;
+  std::vector<int> overflowedBodies;  // slots whose velocity overflowed this step (step stage 4)
+  // Lost bodies (world_bounds.cpp): the static bodies' bounding box, kept until they change.
+  std::vector<LostBody> lostBodies;  // since the last World::takeLostBodies()
+  uint64_t lostBodyCount = 0;
+  bool staticBoundsStale = true;
+  bool hasStaticBodies = false;
+  Aabb staticBounds;
+  void staticBodiesChanged() { staticBoundsStale = true; }
+  void refreshStaticBounds();
+  /// Reports the bodies lost for good, or adds them to `removeLost` with def.removeLostBodies.
+  void findLostBodies(std::vector<RemovedBody>* removeLost);
+  std::vector<int> lostCandidates;      // reused
+  std::vector<char> lostCandidateMark;  // reused, by body slot
+  std::vector<int> lostGroup;           // reused
 };
 
 }  // namespace impulse2d

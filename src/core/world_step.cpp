@@ -1,6 +1,8 @@
 // World::step, top to bottom as the algorithm, and the stages it calls.
 #include "world_impl.hpp"
 
+#include <impulse2d/limits.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -25,7 +27,7 @@ void World::step() {
   w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
   w.correctPositions();   // 8. NGS solvers only: push remaining overlaps apart
   w.updateSleep(dt);      // 9. islands still for long enough fall asleep
-  removeEscapedBodies();  // 10. bodies that left the world extent are removed, not computed
+  removeEscapedBodies();  // 10. bodies that left the world are removed; lost ones reported
   w.clearForces();
   w.time += dt;
   ++w.steps;
@@ -131,14 +133,28 @@ double WorldImpl::speculativeMargin(const Body& a, const Body& b) const {
 }
 
 void WorldImpl::integrateVelocities(double dt) {
+  // Faster than this, a body crosses the whole world within the step: it cannot be simulated.
+  const double maxSpeed = kWorldExtent / dt;
   for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
     SolverBody& body = solverBodies[e];
+    if (body.invMass == 0.0) continue;  // overflowed earlier in this step (below)
     const SolverBodyLoad& load = solverBodies.load(e);
     body.linearVelocity += dt * (def.gravity + body.invMass * load.force);
     body.angularVelocity += dt * body.invInertia * load.torque;
     // Implicit damping: stable for any damping coefficient and time step.
     if (load.linearDamping > 0.0) body.linearVelocity *= 1.0 / (1.0 + dt * load.linearDamping);
     if (load.angularDamping > 0.0) body.angularVelocity *= 1.0 / (1.0 + dt * load.angularDamping);
+    // The source of non-finite impulses: a force too large for the body's mass. Its impulses
+    // would be inf, and 0 x inf is NaN in the static and sleeping bodies' read-only entries,
+    // which every other body touching them reads. So the body stands still, with infinite
+    // mass, for the rest of the step, and is removed at its end (world_bounds.cpp).
+    if (!(std::abs(body.linearVelocity.x()) <= maxSpeed &&
+          std::abs(body.linearVelocity.y()) <= maxSpeed &&
+          std::abs(body.angularVelocity) <= maxSpeed)) {
+      body.linearVelocity.setZero();
+      body.angularVelocity = body.invMass = body.invInertia = 0.0;
+      overflowedBodies.push_back(solverBodies.slotOf(e));
+    }
   }
 }
 

@@ -12,8 +12,10 @@
 #include <impulse2d/Body.h>
 #include <impulse2d/Contact.h>
 #include <impulse2d/Joint.h>
+#include <impulse2d/Shape.h>
 
 #include <string>
+#include <vector>
 
 namespace impulse2d {
 namespace bridge {
@@ -32,13 +34,29 @@ geometry_msgs::Quaternion toQuaternion(Plane plane, double angle);
 geometry_msgs::Pose toPose(Plane plane, const Vec2& position, double angle);
 geometry_msgs::Transform toTransform(Plane plane, const Vec2& position, double angle);
 
+/// What a request's fields were taken to mean where that could surprise, one line each: a zero
+/// (a field the client left out) that stands for a YAML default, as "shapes[0].friction:
+/// default 0.6", and fields the request's types do not use, as "radius: not used by a BOX".
+using Notes = std::vector<std::string>;
+
+/// A service's answer on success: "ok", or "ok (note; note)".
+std::string okWithNotes(const Notes& notes);
+
 /// A request's Body as a BodyDef. Checks what the message's own fields can tell (finite numbers,
 /// sizes > 0, a name, at least one shape, known types) and names the failing field, e.g.
-/// "body.shapes[1].width: must be > 0". Returns "" on success.
-std::string toBodyDef(const impulse2d::Body& msg, BodyDef* out);
+/// "body.shapes[1].width: must be > 0". Returns "" on success. Zero fields mean what omitted YAML
+/// keys mean where zero is not a useful request (docs/ros_api.md lists each); `notes` gets the
+/// ones that could surprise.
+std::string toBodyDef(const impulse2d::Body& msg, BodyDef* out, Notes* notes = nullptr);
 
 /// A request's Joint as a JointDef; the bodies stay named (msg.body_a, msg.body_b).
-std::string toJointDef(const impulse2d::Joint& msg, JointDef* out);
+std::string toJointDef(const impulse2d::Joint& msg, JointDef* out, Notes* notes = nullptr);
+
+uint8_t toBodyTypeMsg(BodyType type);
+
+/// A shape as a spawn request would give it (GetBodyProperties.srv): POLYGON with its vertices
+/// or CIRCLE with radius and offset; a friction of 0 as FRICTIONLESS.
+impulse2d::Shape toShapeMsg(const ShapeProperties& shape);
 
 /// A contact in the plane's 2D coordinates (z = 0), as the services use them.
 impulse2d::Contact toContactMsg(const ContactSnapshot& contact);

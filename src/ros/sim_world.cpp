@@ -7,12 +7,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace impulse2d {
 namespace bridge {
 namespace {
 
 std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+void outline(const Shape& shape, ShapeOutline* out) {
+  out->circle = shape.type == ShapeType::Circle;
+  if (out->circle) {
+    out->center = shape.circle.center;
+    out->radius = shape.circle.radius;
+  } else {
+    out->vertices.assign(shape.polygon.vertices, shape.polygon.vertices + shape.polygon.count);
+  }
+}
+
+// m: a force applied closer than this to the centre of mass is applied there, for a note.
+constexpr double kWrenchArmWorthNoting = 1e-3;
 
 // A relative tolerance so that a duration of exactly k time steps gives k steps, not k + 1.
 // Capped so the conversion to an integer stays defined for any finite duration (a wrench held
@@ -151,7 +165,8 @@ bool SimWorld::deleteJoint(const std::string& name, std::string* error) {
 }
 
 bool SimWorld::applyWrench(const std::string& body, const Vec2& force, double torque,
-                           const Vec2& point, double duration, std::string* error) {
+                           const Vec2& point, double duration, std::string* error,
+                           std::vector<std::string>* notes) {
   const BodyId id = world_->findBody(body);
   if (body.empty() || !id.valid()) {
     *error = body.empty() ? "body: must not be empty" : "body: no body named " + quoted(body);
@@ -177,6 +192,17 @@ bool SimWorld::applyWrench(const std::string& body, const Vec2& force, double to
     *error = "the world already holds the maximum of " + std::to_string(kMaxPendingWrenches) +
              " pending wrenches; wait for some to end";
     return false;
+  }
+  // (0, 0) is what a client sends when it leaves the point out; meant or not, it is the world
+  // origin, and a force there far from the body spins it.
+  const double arm = (world_->body(id).center - point).norm();
+  if (notes != nullptr && point.isZero() && !force.isZero() && arm > kWrenchArmWorthNoting) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "point: (0, 0), the world origin, %.3g m from the centre of mass: the force "
+                  "also turns the body",
+                  arm);
+    notes->push_back(text);
   }
   Wrench wrench;
   wrench.body = id;
@@ -233,6 +259,33 @@ bool SimWorld::getBodyState(const std::string& name, BodySnapshot* out, std::str
   return true;
 }
 
+bool SimWorld::getBodyProperties(const std::string& name, BodyProperties* out,
+                                 std::string* error) const {
+  const BodyId id = world_->findBody(name);
+  if (name.empty() || !id.valid()) {
+    *error = name.empty() ? "name: must not be empty" : "name: no body named " + quoted(name);
+    return false;
+  }
+  const Body& body = world_->body(id);
+  out->type = body.type;
+  out->mass = body.mass;
+  out->inertia = body.inertia;
+  out->localCenter = body.localCenter;
+  out->linearDamping = body.linearDamping;
+  out->angularDamping = body.angularDamping;
+  out->bullet = body.bullet;
+  out->shapes.clear();
+  for (const Shape& shape : body.shapes) {
+    ShapeProperties p;
+    outline(shape, &p);
+    p.density = shape.density;
+    p.friction = shape.friction;
+    p.restitution = shape.restitution;
+    out->shapes.push_back(std::move(p));
+  }
+  return true;
+}
+
 void SimWorld::step() {
   for (Wrench& w : wrenches_) {
     if (!world_->isValid(w.body)) {
@@ -249,19 +302,35 @@ void SimWorld::step() {
                   wrenches_.end());
   world_->step();
   ++steps_;
-  for (const RemovedBody& removed : world_->takeRemovedBodies()) {
+  simTimeNs_ += static_cast<int64_t>(std::llround(timeStep() * 1e9));
+  // The node drains these after every step; the cap only guards a caller that never does.
+  constexpr size_t kMaxLosses = 1024;
+  for (RemovedBody& removed : world_->takeRemovedBodies()) {
     ++staticVersion_;  // it may have been static: tf_static is sent again
-    // The node drains this after every step; the cap only guards a caller that never does.
-    if (removedMessages_.size() < 1024) {
-      removedMessages_.push_back("removed body " + quoted(removed.name) + ": " + removed.reason);
+    ++removedCount_;
+    if (losses_.size() < kMaxLosses) {
+      losses_.push_back({std::move(removed.name), removed.cause, true, std::move(removed.reason),
+                         removed.position, simTimeNs_});
     }
   }
-  simTimeNs_ += static_cast<int64_t>(std::llround(timeStep() * 1e9));
+  for (LostBody& lost : world_->takeLostBodies()) {
+    ++lostCount_;
+    if (losses_.size() < kMaxLosses) {
+      losses_.push_back({std::move(lost.name), RemovalCause::LostForGood, false,
+                         std::move(lost.reason), lost.position, simTimeNs_});
+    }
+  }
 }
 
-std::vector<std::string> SimWorld::takeRemovedBodies() {
-  std::vector<std::string> out;
-  out.swap(removedMessages_);
+std::string BodyLoss::describe() const {
+  if (removed) return "removed body " + quoted(name) + ": " + reason;
+  return "body " + quoted(name) + " is " + reason +
+         "; world.remove_lost_bodies: true removes such bodies at once";
+}
+
+std::vector<BodyLoss> SimWorld::takeBodyLosses() {
+  std::vector<BodyLoss> out;
+  out.swap(losses_);
   return out;
 }
 
@@ -289,16 +358,8 @@ std::vector<BodySnapshot> SimWorld::bodies(bool withShapes) const {
     snap.awake = body.awake;
     if (withShapes) {
       for (const Shape& shape : body.shapes) {
-        ShapeOutline outline;
-        outline.circle = shape.type == ShapeType::Circle;
-        if (outline.circle) {
-          outline.center = shape.circle.center;
-          outline.radius = shape.circle.radius;
-        } else {
-          outline.vertices.assign(shape.polygon.vertices,
-                                  shape.polygon.vertices + shape.polygon.count);
-        }
-        snap.shapes.push_back(std::move(outline));
+        snap.shapes.emplace_back();
+        outline(shape, &snap.shapes.back());
       }
     }
     out.push_back(std::move(snap));

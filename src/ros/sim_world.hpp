@@ -28,6 +28,23 @@ struct ShapeOutline {
   std::vector<Vec2> vertices;
 };
 
+/// A shape as the world holds it, with its material (~get_body_properties).
+struct ShapeProperties : ShapeOutline {
+  double density = 0.0;
+  double friction = 0.0;
+  double restitution = 0.0;
+};
+
+/// What the world made of a body besides its state, every default applied.
+struct BodyProperties {
+  BodyType type = BodyType::Dynamic;
+  double mass = 0.0, inertia = 0.0;  ///< 0 for static and kinematic bodies
+  Vec2 localCenter = Vec2::Zero();   ///< centre of mass in the body frame
+  double linearDamping = 0.0, angularDamping = 0.0;
+  bool bullet = false;
+  std::vector<ShapeProperties> shapes;
+};
+
 struct BodySnapshot {
   int index = -1;  ///< the body's slot: stable while it lives, used as a marker id
   std::string name;
@@ -64,6 +81,21 @@ struct JointReading {
   std::string name;  ///< "model_name/joint"
   double position = 0.0;
   double velocity = 0.0;
+};
+
+/// A body the world lost by itself: removed by a step (it left the world extent, its velocity
+/// overflowed, or it was lost for good with world.remove_lost_bodies), or found lost for good
+/// and left to fall.
+struct BodyLoss {
+  std::string name;
+  RemovalCause cause = RemovalCause::LeftWorldExtent;
+  bool removed = true;
+  std::string reason;            ///< "it left the world extent of 1e7 m", "lost for good: ..."
+  Vec2 position = Vec2::Zero();  ///< its origin then
+  int64_t simTimeNs = 0;         ///< the simulated time after the step that found it
+  /// The node's warning: "removed body 'b': it left the world extent of 1e7 m", or "body 'b' is
+  /// lost for good: ...; world.remove_lost_bodies: true removes such bodies at once".
+  std::string describe() const;
 };
 
 /// What ~spawn_urdf asks for and answers (sim_world_urdf.cpp).
@@ -104,11 +136,14 @@ class SimWorld {
   bool deleteJoint(const std::string& name, std::string* error);
   /// `force` (N) at the world point `point`, which then moves with the body, plus `torque`
   /// (N m), for ceil(duration / time_step) steps; duration 0 means one step.
+  /// A force at the point (0, 0) (a point left out) away from the body's centre of mass also
+  /// turns it: `notes` gets a line that says so.
   bool applyWrench(const std::string& body, const Vec2& force, double torque, const Vec2& point,
-                   double duration, std::string* error);
+                   double duration, std::string* error, std::vector<std::string>* notes = nullptr);
   bool setBodyState(const std::string& name, const Vec2& position, double angle,
                     const Vec2& linearVelocity, double angularVelocity, std::string* error);
   bool getBodyState(const std::string& name, BodySnapshot* out, std::string* error) const;
+  bool getBodyProperties(const std::string& name, BodyProperties* out, std::string* error) const;
 
   // URDF models (sim_world_urdf.cpp). A model spawned with `atStart` is part of the start state
   // that reset() restores.
@@ -122,9 +157,12 @@ class SimWorld {
 
   /// One fixed step, with the wrenches that are due.
   void step();
-  /// One line per body that steps removed since the last call because it left the world
-  /// (README "Limits"), e.g. "removed body 'ball': it left the world extent of 1e7 m".
-  std::vector<std::string> takeRemovedBodies();
+  /// The bodies that steps removed, or found lost for good, since the last call, oldest first
+  /// (at most 1024 are kept between calls).
+  std::vector<BodyLoss> takeBodyLosses();
+  /// Since this SimWorld was made, across resets.
+  uint64_t removedBodyCount() const { return removedCount_; }
+  uint64_t lostBodyCount() const { return lostCount_; }
   uint64_t stepCount() const { return steps_; }
   /// Simulated time as steps * time_step summed in nanoseconds, so it never drifts.
   int64_t simTimeNs() const { return simTimeNs_; }
@@ -171,7 +209,9 @@ class SimWorld {
   uint64_t steps_ = 0;
   int64_t simTimeNs_ = 0;
   uint64_t staticVersion_ = 0;
-  std::vector<std::string> removedMessages_;
+  std::vector<BodyLoss> losses_;
+  uint64_t removedCount_ = 0;
+  uint64_t lostCount_ = 0;
 };
 
 }  // namespace bridge

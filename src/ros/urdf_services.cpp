@@ -1,5 +1,6 @@
 // WorldNode's URDF side: ~spawn_urdf, the ~urdf_param model at start, joint_states, and the
 // joint motor interface (~set_joint_motor service, ~joint_command topic).
+#include "conversions.hpp"
 #include "world_node.hpp"
 
 #include <sensor_msgs/JointState.h>
@@ -10,8 +11,12 @@ namespace impulse2d {
 namespace bridge {
 namespace {
 
-std::string withWarnings(const std::vector<std::string>& warnings) {
-  std::string message = "ok";
+// The model name of ~urdf_param's model unless ~urdf_model_name gives one, and of a ~spawn_urdf
+// request that leaves model_name out.
+const char* const kDefaultModelName = "robot";
+
+std::string withWarnings(const Notes& notes, const std::vector<std::string>& warnings) {
+  std::string message = okWithNotes(notes);
   for (size_t i = 0; i < warnings.size(); ++i) message += "; " + warnings[i];
   return message;
 }
@@ -32,7 +37,7 @@ void WorldNode::loadStartUrdf() {
   }
   UrdfRequest request;
   request.xml = xml;
-  pnh_.param<std::string>("urdf_model_name", request.modelName, "robot");
+  pnh_.param<std::string>("urdf_model_name", request.modelName, kDefaultModelName);
   double x = 0.0, y = 0.0, theta = 0.0;
   pnh_.param("urdf_x", x, 0.0);
   pnh_.param("urdf_y", y, 0.0);
@@ -62,7 +67,12 @@ void WorldNode::advertiseUrdf() {
 
 bool WorldNode::spawnUrdf(SpawnUrdf::Request& req, SpawnUrdf::Response& res) {
   UrdfRequest request;
+  Notes notes;
   request.modelName = req.model_name;
+  if (request.modelName.empty()) {
+    request.modelName = kDefaultModelName;
+    notes.push_back(std::string("model_name: default '") + kDefaultModelName + "'");
+  }
   request.xml = req.urdf_xml;
   request.position = Vec2(req.pose.x, req.pose.y);
   request.angle = req.pose.theta;
@@ -73,7 +83,7 @@ bool WorldNode::spawnUrdf(SpawnUrdf::Request& req, SpawnUrdf::Response& res) {
     sim_.spawnUrdf(request, false, &spawned, &error);
   }
   res.success = error.empty();
-  res.message = error.empty() ? withWarnings(spawned.warnings) : error;
+  res.message = error.empty() ? withWarnings(notes, spawned.warnings) : error;
   res.bodies = spawned.bodies;
   res.joints = spawned.joints;
   return true;

@@ -112,6 +112,7 @@ void WorldNode::advertise() {
   if (publishClock_) clockPub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   contactsPub_ = pnh_.advertise<impulse2d::ContactArray>("contacts", 10);
   markersPub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 10);
+  removedBodiesPub_ = pnh_.advertise<impulse2d::RemovedBodies>("removed_bodies", 1, true);
   diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_, name_);
   diagnostics_->setHardwareID("impulse2d");
   diagnostics_->add("world", this, &WorldNode::diagnose);
@@ -125,12 +126,38 @@ void WorldNode::restartSchedule() {
 void WorldNode::stepLocked() {
   const auto start = std::chrono::steady_clock::now();
   sim_.step();
-  for (const std::string& removed : sim_.takeRemovedBodies()) {
-    ROS_WARN("[%s] %s", name_.c_str(), removed.c_str());
-  }
+  recordLosses();
   statsStepSeconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++statsSteps_;
+}
+
+void WorldNode::recordLosses() {
+  // ~removed_bodies keeps this many; its count field says how many there were in all.
+  constexpr size_t kMaxRemovedKept = 1000;
+  for (const BodyLoss& loss : sim_.takeBodyLosses()) {
+    ROS_WARN("[%s] %s", name_.c_str(), loss.describe().c_str());
+    if (!loss.removed) continue;
+    impulse2d::RemovedBody msg;
+    msg.name = loss.name;
+    switch (loss.cause) {
+      case RemovalCause::LeftWorldExtent:
+        msg.cause = impulse2d::RemovedBody::LEFT_WORLD;
+        break;
+      case RemovalCause::Overflow:
+        msg.cause = impulse2d::RemovedBody::OVERFLOW;
+        break;
+      case RemovalCause::LostForGood:
+        msg.cause = impulse2d::RemovedBody::LOST_FOR_GOOD;
+        break;
+    }
+    msg.reason = loss.reason;
+    msg.position.x = loss.position.x();
+    msg.position.y = loss.position.y();
+    msg.stamp = stampFor(loss.simTimeNs);
+    removedBodies_.push_back(std::move(msg));
+    if (removedBodies_.size() > kMaxRemovedKept) removedBodies_.pop_front();
+  }
 }
 
 void WorldNode::onStepTimer(const ros::WallTimerEvent&) {

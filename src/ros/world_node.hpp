@@ -9,9 +9,11 @@
 #include <impulse2d/CreateJoint.h>
 #include <impulse2d/DeleteBody.h>
 #include <impulse2d/DeleteJoint.h>
+#include <impulse2d/GetBodyProperties.h>
 #include <impulse2d/GetBodyState.h>
 #include <impulse2d/JointCommand.h>
 #include <impulse2d/LoadScene.h>
+#include <impulse2d/RemovedBodies.h>
 #include <impulse2d/SetBodyState.h>
 #include <impulse2d/SetJointMotor.h>
 #include <impulse2d/SpawnBody.h>
@@ -21,6 +23,7 @@
 #include <std_srvs/Empty.h>
 
 #include <atomic>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -59,13 +62,16 @@ class WorldNode {
 
   // Stepping (world_node.cpp).
   void onStepTimer(const ros::WallTimerEvent& event);
-  void stepLocked();  ///< one step plus its statistics; the caller holds the Lock
+  void stepLocked();    ///< one step plus its statistics; the caller holds the Lock
+  void recordLosses();  ///< logs what the step lost, keeps the removals for ~removed_bodies
   void restartSchedule();
   ros::Time stampFor(int64_t simTimeNs) const;
   void publishClock(int64_t simTimeNs);
 
   // Publishing (world_publish.cpp).
   void onPublishTimer(const ros::WallTimerEvent& event);
+  /// ~removed_bodies again when something was removed since it was last sent (or never sent).
+  void publishRemovedBodies();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   // Services (world_services.cpp).
@@ -76,6 +82,7 @@ class WorldNode {
   bool loadScene(LoadScene::Request& req, LoadScene::Response& res);
   bool applyWrench(ApplyWrench::Request& req, ApplyWrench::Response& res);
   bool getBodyState(GetBodyState::Request& req, GetBodyState::Response& res);
+  bool getBodyProperties(GetBodyProperties::Request& req, GetBodyProperties::Response& res);
   bool setBodyState(SetBodyState::Request& req, SetBodyState::Response& res);
   bool step(Step::Request& req, Step::Response& res);
   bool pause(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
@@ -105,6 +112,9 @@ class WorldNode {
   int64_t statsSimStartNs_ = 0;
   uint64_t statsSteps_ = 0;
   double statsStepSeconds_ = 0.0;
+  uint64_t statsRemovedStart_ = 0, statsLostStart_ = 0;  ///< counts at the window's start
+  // What ~removed_bodies sends: the latest removals (RemovedBodies.msg says how many).
+  std::deque<impulse2d::RemovedBody> removedBodies_;
 
   // /clock never goes back, even when a timer tick and a step call publish out of order. It is
   // also sent at ~publish_rate while paused, so sim-time nodes see the clock (as gazebo does).
@@ -118,11 +128,13 @@ class WorldNode {
 
   // Only the publish timer touches these (a timer's callbacks never overlap).
   uint64_t publishedStaticVersion_ = 0;
+  uint64_t publishedRemovedCount_ = 0;
+  bool removedPublished_ = false;
   bool staticPublished_ = false;
   bool tfPublished_ = false;
   ros::Time lastTfStamp_;
 
-  ros::Publisher tfPub_, tfStaticPub_, clockPub_, contactsPub_, markersPub_;
+  ros::Publisher tfPub_, tfStaticPub_, clockPub_, contactsPub_, markersPub_, removedBodiesPub_;
   ros::Publisher jointStatesPub_;
   ros::Subscriber jointCommandSub_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;

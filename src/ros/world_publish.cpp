@@ -73,6 +73,7 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
   }
 
   publishJointStates(scene.stamp, jointReadings);
+  publishRemovedBodies();
 
   if (wantContacts) {
     impulse2d::ContactArray msg;
@@ -87,6 +88,22 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
     markersPub_.publish(buildMarkers(scene));
   }
   diagnostics_->update();
+}
+
+void WorldNode::publishRemovedBodies() {
+  impulse2d::RemovedBodies msg;
+  {
+    Lock lock(*this);
+    const uint64_t count = sim_.removedBodyCount();
+    if (removedPublished_ && count == publishedRemovedCount_) return;
+    msg.header.stamp = stampFor(sim_.simTimeNs());
+    msg.header.frame_id = sim_.frameId();
+    msg.bodies.assign(removedBodies_.begin(), removedBodies_.end());
+    msg.count = count;
+    publishedRemovedCount_ = count;
+    removedPublished_ = true;
+  }
+  removedBodiesPub_.publish(msg);
 }
 
 void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -106,6 +123,17 @@ void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
   }
+  // Losing bodies is worth a warning for the window it happened in.
+  const uint64_t removed = sim_.removedBodyCount(), lost = sim_.lostBodyCount();
+  if (removed > statsRemovedStart_) {
+    status.mergeSummaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                         "%llu bodies removed (see ~removed_bodies)",
+                         static_cast<unsigned long long>(removed - statsRemovedStart_));
+  }
+  if (lost > statsLostStart_) {
+    status.mergeSummaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%llu bodies lost for good",
+                         static_cast<unsigned long long>(lost - statsLostStart_));
+  }
   status.add("real-time factor", realTimeFactor);
   status.add("mean step time (s)", meanStep);
   status.add("steps in window", statsSteps_);
@@ -113,11 +141,15 @@ void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("simulated time (s)", 1e-9 * static_cast<double>(sim_.simTimeNs()));
   status.add("bodies", sim_.bodyCount());
   status.add("contacts", sim_.contactCount());
+  status.add("bodies removed", removed);
+  status.add("bodies lost for good", lost);
   status.add("requested rate (steps/s)", rate_);
   statsStart_ = now;
   statsSimStartNs_ = sim_.simTimeNs();
   statsSteps_ = 0;
   statsStepSeconds_ = 0.0;
+  statsRemovedStart_ = removed;
+  statsLostStart_ = lost;
 }
 
 }  // namespace bridge

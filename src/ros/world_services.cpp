@@ -14,9 +14,9 @@ namespace {
 constexpr uint32_t kMaxStepsPerCall = 1000000;
 
 template <typename Response>
-bool answer(Response& res, const std::string& error) {
+bool answer(Response& res, const std::string& error, const Notes& notes = Notes()) {
   res.success = error.empty();
-  res.message = error.empty() ? "ok" : error;
+  res.message = error.empty() ? okWithNotes(notes) : error;
   return true;
 }
 
@@ -42,6 +42,8 @@ void WorldNode::advertiseServices() {
   services_.push_back(pnh_.advertiseService("apply_wrench", &WorldNode::applyWrench, this));
   services_.push_back(pnh_.advertiseService("get_body_state", &WorldNode::getBodyState, this));
   services_.push_back(pnh_.advertiseService("set_body_state", &WorldNode::setBodyState, this));
+  services_.push_back(
+      pnh_.advertiseService("get_body_properties", &WorldNode::getBodyProperties, this));
   services_.push_back(pnh_.advertiseService("step", &WorldNode::step, this));
   services_.push_back(pnh_.advertiseService("pause", &WorldNode::pause, this));
   services_.push_back(pnh_.advertiseService("unpause", &WorldNode::unpause, this));
@@ -51,12 +53,13 @@ void WorldNode::advertiseServices() {
 
 bool WorldNode::spawnBody(SpawnBody::Request& req, SpawnBody::Response& res) {
   BodyDef def;
-  std::string error = toBodyDef(req.body, &def);
+  Notes notes;
+  std::string error = toBodyDef(req.body, &def, &notes);
   if (error.empty()) {
     Lock lock(*this);
     sim_.spawnBody(def, &error);
   }
-  return answer(res, error);
+  return answer(res, error, notes);
 }
 
 bool WorldNode::deleteBody(DeleteBody::Request& req, DeleteBody::Response& res) {
@@ -70,12 +73,13 @@ bool WorldNode::deleteBody(DeleteBody::Request& req, DeleteBody::Response& res) 
 
 bool WorldNode::createJoint(CreateJoint::Request& req, CreateJoint::Response& res) {
   JointDef def;
-  std::string error = toJointDef(req.joint, &def);
+  Notes notes;
+  std::string error = toJointDef(req.joint, &def, &notes);
   if (error.empty()) {
     Lock lock(*this);
     sim_.createJoint(def, req.joint.body_a, req.joint.body_b, &error);
   }
-  return answer(res, error);
+  return answer(res, error, notes);
 }
 
 bool WorldNode::deleteJoint(DeleteJoint::Request& req, DeleteJoint::Response& res) {
@@ -103,12 +107,13 @@ bool WorldNode::applyWrench(ApplyWrench::Request& req, ApplyWrench::Response& re
                                finite("torque", req.torque), finite("point.x", req.point.x),
                                finite("point.y", req.point.y), finite("duration", req.duration)});
   if (error.empty() && req.duration < 0.0) error = "duration: must be >= 0 (0: one step)";
+  Notes notes;
   if (error.empty()) {
     Lock lock(*this);
     sim_.applyWrench(req.body, Vec2(req.force.x, req.force.y), req.torque,
-                     Vec2(req.point.x, req.point.y), req.duration, &error);
+                     Vec2(req.point.x, req.point.y), req.duration, &error, &notes);
   }
-  return answer(res, error);
+  return answer(res, error, notes);
 }
 
 bool WorldNode::getBodyState(GetBodyState::Request& req, GetBodyState::Response& res) {
@@ -125,6 +130,28 @@ bool WorldNode::getBodyState(GetBodyState::Request& req, GetBodyState::Response&
     res.twist.linear.x = body.linearVelocity.x();
     res.twist.linear.y = body.linearVelocity.y();
     res.twist.angular.z = body.angularVelocity;
+  }
+  return answer(res, error);
+}
+
+bool WorldNode::getBodyProperties(GetBodyProperties::Request& req,
+                                  GetBodyProperties::Response& res) {
+  BodyProperties body;
+  std::string error;
+  {
+    Lock lock(*this);
+    sim_.getBodyProperties(req.name, &body, &error);
+  }
+  if (error.empty()) {
+    res.type = toBodyTypeMsg(body.type);
+    res.mass = body.mass;
+    res.inertia = body.inertia;
+    res.center_of_mass.x = body.localCenter.x();
+    res.center_of_mass.y = body.localCenter.y();
+    res.linear_damping = body.linearDamping;
+    res.angular_damping = body.angularDamping;
+    res.bullet = body.bullet;
+    for (const ShapeProperties& shape : body.shapes) res.shapes.push_back(toShapeMsg(shape));
   }
   return answer(res, error);
 }

@@ -28,7 +28,8 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
                   "contact_hertz",
                   "contact_damping_ratio",
                   "joint_hertz",
-                  "joint_damping_ratio"});
+                  "joint_damping_ratio",
+                  "remove_lost_bodies"});
   WorldDef& w = scene->world;
   w.gravity = f.vec2("gravity", w.gravity);
   w.timeStep = f.number("time_step", w.timeStep);
@@ -54,6 +55,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   w.contactDampingRatio = f.number("contact_damping_ratio", w.contactDampingRatio);
   w.jointHertz = f.number("joint_hertz", w.jointHertz);
   w.jointDampingRatio = f.number("joint_damping_ratio", w.jointDampingRatio);
+  w.removeLostBodies = f.boolean("remove_lost_bodies", w.removeLostBodies);
   scene->plane = f.string("plane", scene->plane);
   if (scene->plane != "xz" && scene->plane != "xy") {
     throw SceneError("plane",

@@ -94,13 +94,119 @@ TEST(Conversions, JointMessages) {
   EXPECT_EQ(toJointDef(msg, &def), "joint.body_b: must differ from body_a");
   msg.body_b = "b";
   msg.type = impulse2d::Joint::PRISMATIC;
-  EXPECT_EQ(toJointDef(msg, &def),
-            "joint.axis: a prismatic joint needs a non-zero axis in the plane");
   msg.axis.x = 2.0;
   msg.anchor.y = 3.0;
-  ASSERT_EQ(toJointDef(msg, &def), "");
+  Notes notes;
+  ASSERT_EQ(toJointDef(msg, &def, &notes), "");
   EXPECT_EQ(def.axis, Vec2(1.0, 0.0));
   EXPECT_EQ(def.anchor, Vec2(0.0, 3.0));
+  EXPECT_TRUE(notes.empty());
+}
+
+// Zero is what a client sends for a field it leaves out. Where zero is no useful request it
+// means what the omitted YAML key means, and the answer says so where that could surprise.
+TEST(Conversions, ZeroFieldsMeanTheYamlDefaults) {
+  const ShapeDef yaml;  // what a scene's shape without those keys gets
+  impulse2d::Body msg = boxMsg("b");
+  BodyDef def;
+  Notes notes;
+  ASSERT_EQ(toBodyDef(msg, &def, &notes), "");
+  EXPECT_EQ(def.shapes[0].friction, yaml.friction);
+  EXPECT_EQ(def.shapes[0].friction, 0.6);
+  EXPECT_EQ(def.shapes[0].density, yaml.density);
+  EXPECT_EQ(def.shapes[0].restitution, yaml.restitution);
+  EXPECT_EQ(def.mass, BodyDef().mass);
+  ASSERT_EQ(notes, Notes{"shapes[0].friction: default 0.6"});
+  EXPECT_EQ(okWithNotes(notes), "ok (shapes[0].friction: default 0.6)");
+  EXPECT_EQ(okWithNotes(Notes()), "ok");
+
+  // No friction at all is asked for by name; other negative values are mistakes.
+  msg.shapes[0].friction = impulse2d::Shape::FRICTIONLESS;
+  notes.clear();
+  ASSERT_EQ(toBodyDef(msg, &def, &notes), "");
+  EXPECT_EQ(def.shapes[0].friction, 0.0);
+  EXPECT_TRUE(notes.empty());
+  msg.shapes[0].friction = 0.25;
+  ASSERT_EQ(toBodyDef(msg, &def, &notes), "");
+  EXPECT_EQ(def.shapes[0].friction, 0.25);
+  EXPECT_TRUE(notes.empty());
+  for (const double bad :
+       {-0.5, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    msg.shapes[0].friction = bad;
+    EXPECT_EQ(toBodyDef(msg, &def),
+              "body.shapes[0].friction: must be >= 0 (0: the default 0.6), or FRICTIONLESS (-1) "
+              "for none")
+        << bad;
+  }
+
+  // STATIC is 0, where an omitted YAML type is dynamic: the answer says what the body is.
+  msg = boxMsg("b");
+  msg.type = impulse2d::Body::STATIC;
+  msg.shapes.push_back(msg.shapes[0]);
+  msg.shapes[1].friction = 0.9;
+  msg.shapes.push_back(msg.shapes[0]);
+  notes.clear();
+  ASSERT_EQ(toBodyDef(msg, &def, &notes), "");
+  EXPECT_EQ(def.type, BodyType::Static);
+  EXPECT_EQ(okWithNotes(notes),
+            "ok (type: STATIC (0), it never moves; DYNAMIC is 2; shapes[0].friction: default "
+            "0.6; shapes[2].friction: default 0.6)");
+}
+
+TEST(Conversions, FieldsTheTypeDoesNotUseArePointedOut) {
+  impulse2d::Body msg = boxMsg("b");
+  msg.shapes[0].radius = 0.5;
+  msg.shapes[0].friction = 0.5;
+  BodyDef def;
+  Notes notes;
+  ASSERT_EQ(toBodyDef(msg, &def, &notes), "");
+  EXPECT_EQ(notes, Notes{"shapes[0].radius: not used by a BOX"});
+  msg.shapes[0].type = impulse2d::Shape::CIRCLE;
+  notes.clear();
+  ASSERT_EQ(toBodyDef(msg, &def, &notes), "");
+  EXPECT_EQ(notes, Notes{"shapes[0].width, height: not used by a CIRCLE"});
+
+  impulse2d::Joint joint;
+  joint.name = "j";
+  joint.body_a = "a";
+  joint.body_b = "b";
+  JointDef jointDef;
+  notes.clear();
+  ASSERT_EQ(toJointDef(joint, &jointDef, &notes), "");
+  EXPECT_TRUE(notes.empty()) << "a plain revolute joint";
+
+  joint.type = impulse2d::Joint::PRISMATIC;  // axis left out: YAML's [1, 0]
+  ASSERT_EQ(toJointDef(joint, &jointDef, &notes), "");
+  EXPECT_EQ(jointDef.axis, Vec2(1.0, 0.0));
+  EXPECT_EQ(jointDef.axis, JointDef().axis);
+  EXPECT_EQ(notes, Notes{"axis: default (1, 0)"});
+
+  joint.type = impulse2d::Joint::REVOLUTE;
+  joint.axis.y = 1.0;
+  joint.length = 2.0;
+  joint.lower = -1.0;
+  joint.upper = 1.0;
+  joint.enable_motor = true;
+  notes.clear();
+  ASSERT_EQ(toJointDef(joint, &jointDef, &notes), "");
+  EXPECT_EQ(okWithNotes(notes),
+            "ok (axis: not used by a REVOLUTE joint; length: not used by a REVOLUTE joint; "
+            "lower, upper: not used, enable_limit is false; max_motor_torque: 0, so the motor "
+            "cannot drive the joint)");
+  EXPECT_FALSE(jointDef.enableLimit);
+
+  joint = impulse2d::Joint();
+  joint.name = "j";
+  joint.body_a = "a";
+  joint.body_b = "b";
+  joint.type = impulse2d::Joint::WELD;
+  joint.motor_speed = 1.0;
+  joint.enable_limit = true;
+  notes.clear();
+  ASSERT_EQ(toJointDef(joint, &jointDef, &notes), "");
+  EXPECT_EQ(okWithNotes(notes),
+            "ok (enable_limit, lower, upper: not used by a WELD joint; enable_motor, motor_speed, "
+            "max_motor_torque: not used by a WELD joint)");
 }
 
 TEST(SceneParam, DictionaryBecomesYamlWithExactNumbers) {

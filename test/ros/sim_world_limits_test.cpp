@@ -75,11 +75,73 @@ TEST_F(SimWorldLimits, BodiesThatLeaveTheWorldAreReportedOnce) {
   ASSERT_TRUE(sim.spawnBody(light, &error)) << error;
   ASSERT_TRUE(sim.applyWrench("light", Vec2(kMaxForce, 0.0), 0.0, Vec2(5.0, 5.0), 0.0, &error));
   sim.step();
-  const std::vector<std::string> removed = sim.takeRemovedBodies();
+  const std::vector<BodyLoss> removed = sim.takeBodyLosses();
   ASSERT_EQ(removed.size(), 1u);
-  EXPECT_EQ(removed[0], "removed body 'light': it left the world extent of 1e7 m");
-  EXPECT_TRUE(sim.takeRemovedBodies().empty());
+  EXPECT_EQ(removed[0].describe(),
+            "removed body 'light': it was pushed faster than 1e7 m per step (a force too large "
+            "for its mass)");
+  EXPECT_TRUE(removed[0].removed);
+  EXPECT_EQ(removed[0].cause, RemovalCause::Overflow);
+  EXPECT_EQ(removed[0].position, Vec2(5.0, 5.0));
+  EXPECT_EQ(removed[0].simTimeNs, sim.simTimeNs());
+  EXPECT_TRUE(sim.takeBodyLosses().empty());
   EXPECT_EQ(sim.bodyCount(), 2u);
+  EXPECT_EQ(sim.removedBodyCount(), 1u);
+}
+
+TEST_F(SimWorldLimits, BodiesLostForGoodAreReportedAndRemovedOnlyWhenTheWorldSaysSo) {
+  const char* const kDrop = R"(
+bodies:
+  - {name: ground, type: static, position: [0, -0.5], shapes: [{size: [20, 1]}]}
+  - {name: off, position: [15, 0], shapes: [{size: [1, 1]}]}
+)";
+  for (const bool remove : {false, true}) {
+    SimWorld drop;
+    const std::string world = remove ? "world: {remove_lost_bodies: true}\n" : "";
+    ASSERT_TRUE(drop.loadStartScene(world + kDrop, &error)) << error;
+    // Its top at 0.707 m passes -2 m once it fell 2.71 m: after sqrt(2 x 2.71 / 9.81) = 0.74 s.
+    for (int i = 0; i < 100; ++i) drop.step();
+    const std::vector<BodyLoss> lost = drop.takeBodyLosses();
+    ASSERT_EQ(lost.size(), 1u) << remove;
+    EXPECT_EQ(lost[0].cause, RemovalCause::LostForGood);
+    EXPECT_EQ(lost[0].removed, remove);
+    EXPECT_EQ(drop.bodyCount(), remove ? 1u : 2u);
+    EXPECT_EQ(drop.removedBodyCount(), remove ? 1u : 0u);
+    EXPECT_EQ(drop.lostBodyCount(), remove ? 0u : 1u);
+    const std::string line = lost[0].describe();
+    EXPECT_EQ(line.rfind(remove ? "removed body 'off': lost for good: it fell "
+                                : "body 'off' is lost for good: it fell ",
+                         0),
+              0u)
+        << line;
+    EXPECT_NE(line.find("below every static body, more than their height of 1 m"),
+              std::string::npos)
+        << line;
+    // The counts run on across a reset, which brings the body back.
+    drop.reset();
+    for (int i = 0; i < 100; ++i) drop.step();
+    EXPECT_EQ(drop.takeBodyLosses().size(), 1u);
+    EXPECT_EQ(drop.removedBodyCount() + drop.lostBodyCount(), 2u);
+  }
+}
+
+TEST_F(SimWorldLimits, AForceAtTheWorldOriginFarFromTheBodyIsPointedOut) {
+  std::vector<std::string> notes;
+  BodyDef far;
+  far.name = "far";
+  far.position = Vec2(3.0, 4.0);
+  far.shapes.resize(1);
+  ASSERT_TRUE(sim.spawnBody(far, &error)) << error;
+  ASSERT_TRUE(sim.applyWrench("far", Vec2(1.0, 0.0), 0.0, Vec2::Zero(), 0.0, &error, &notes));
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0],
+            "point: (0, 0), the world origin, 5 m from the centre of mass: the force also turns "
+            "the body");
+  notes.clear();
+  // At the body, or a torque alone: nothing to point out.
+  ASSERT_TRUE(sim.applyWrench("far", Vec2(1.0, 0.0), 0.0, Vec2(3.0, 4.0), 0.0, &error, &notes));
+  ASSERT_TRUE(sim.applyWrench("far", Vec2::Zero(), 1.0, Vec2::Zero(), 0.0, &error, &notes));
+  EXPECT_TRUE(notes.empty());
 }
 
 TEST(ConversionsLimits, OversizedMessagesAreRefusedBeforeConversion) {

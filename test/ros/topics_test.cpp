@@ -9,37 +9,10 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include <atomic>
 #include <cmath>
-#include <mutex>
 
 namespace impulse2d_test {
 namespace {
-
-/// Keeps the latest message of a topic.
-template <typename Msg>
-class Latest {
- public:
-  explicit Latest(const std::string& topic) {
-    sub_ = ros::NodeHandle().subscribe(topic, 10, &Latest::onMessage, this);
-  }
-  typename Msg::ConstPtr get() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return msg_;
-  }
-  int count() const { return count_.load(); }
-
- private:
-  void onMessage(const typename Msg::ConstPtr& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    msg_ = msg;
-    ++count_;
-  }
-  mutable std::mutex mutex_;
-  typename Msg::ConstPtr msg_;
-  std::atomic<int> count_{0};
-  ros::Subscriber sub_;
-};
 
 bool hasContact(const impulse2d::ContactArray& msg, const std::string& a, const std::string& b) {
   for (const impulse2d::Contact& c : msg.contacts) {

@@ -7,7 +7,9 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 
+#include <atomic>
 #include <functional>
+#include <mutex>
 #include <string>
 
 #include "service_call.hpp"
@@ -46,6 +48,31 @@ void emptyCall(const std::string& service);
 
 /// Polls `done` every 10 ms until it is true or `timeout` wall seconds pass.
 bool waitFor(const std::function<bool()>& done, double timeout);
+
+/// Keeps the latest message of a topic.
+template <typename Msg>
+class Latest {
+ public:
+  explicit Latest(const std::string& topic) {
+    sub_ = ros::NodeHandle().subscribe(topic, 10, &Latest::onMessage, this);
+  }
+  typename Msg::ConstPtr get() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return msg_;
+  }
+  int count() const { return count_.load(); }
+
+ private:
+  void onMessage(const typename Msg::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    msg_ = msg;
+    ++count_;
+  }
+  mutable std::mutex mutex_;
+  typename Msg::ConstPtr msg_;
+  std::atomic<int> count_{0};
+  ros::Subscriber sub_;
+};
 
 /// Pauses the world for the scope, and lets it run again afterwards.
 class PausedWorld {

@@ -34,6 +34,7 @@ world:
   time_to_sleep: 2.0
   sleep_linear_tolerance: 0.02
   sleep_angular_tolerance: 0.05
+  remove_lost_bodies: true
 bodies:
   - name: ground
     type: static
@@ -101,6 +102,8 @@ TEST(SceneParse, ReadsEveryKey) {
   EXPECT_EQ(s.world.timeToSleep, 2.0);
   EXPECT_EQ(s.world.sleepLinearTolerance, 0.02);
   EXPECT_EQ(s.world.sleepAngularTolerance, 0.05);
+  EXPECT_TRUE(s.world.removeLostBodies);
+  EXPECT_FALSE(WorldDef().removeLostBodies) << "off unless asked for";
   EXPECT_EQ(s.plane, "xy");
   EXPECT_EQ(s.frameId, "map");
   ASSERT_EQ(s.bodies.size(), 3u);
