@@ -37,6 +37,7 @@ struct BenchBody {
   double linearDamping = 0.0;    ///< 1/s
   bool awake = true;             ///< false: created asleep (scenes that sleep)
   double sleepThreshold = 0.0;   ///< m/s, Box2D v3's per-body threshold; 0: the engine's own
+  bool canSleep = true;          ///< false: never sleeps (Box2D's enableSleep / allowSleep)
   int group = -1;                ///< >= 0: created and destroyed by the scene's events
   std::vector<BenchShape> shapes;
 };

@@ -251,7 +251,9 @@ SceneSpec spinner(bool quick) {
   blade.vertices = {Vec2(-0.4, -20.0), Vec2(0.4, -20.0), Vec2(0.4, 20.0), Vec2(-0.4, 20.0)};
   blade.radius = 0.2;  // b2MakeRoundedBox(0.4, 20, 0.2)
   blade.friction = 0.0;
-  const int spinner = add(scene, body(Vec2(0.0, 12.0), false, blade));
+  BenchBody rotor = body(Vec2(0.0, 12.0), false, blade);
+  rotor.canSleep = false;
+  const int spinner = add(scene, rotor);
   BenchJoint motor = pin(ground, spinner, Vec2(0.0, 12.0));
   motor.enableMotor = true;
   motor.motorSpeed = 5.0;

@@ -78,6 +78,7 @@ class Box2dAdapter : public GroupedAdapter<b2Body*> {
     def.linearVelocity = toB2(body.velocity);
     def.linearDamping = static_cast<float>(body.linearDamping);
     def.awake = body.awake;
+    def.allowSleep = body.canSleep;
     b2Body* b = world_->CreateBody(&def);
     for (const BenchShape& shape : body.shapes) addFixture(b, shape);
     if (!body.isStatic) {

@@ -124,6 +124,7 @@ class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
     def.linearVelocity = toB2(body.velocity);
     def.linearDamping = static_cast<float>(body.linearDamping);
     def.isAwake = body.awake;
+    def.enableSleep = body.canSleep;
     if (body.sleepThreshold > 0.0) def.sleepThreshold = static_cast<float>(body.sleepThreshold);
     const b2BodyId id = b2CreateBody(world_, &def);
     for (const BenchShape& shape : body.shapes) addShape(id, shape);
