@@ -64,8 +64,12 @@ void updateContact(Contact& contact, const Body& a, const Body& b, double specul
   const double oldNormal[2] = {contact.normalImpulse[0], contact.normalImpulse[1]};
   const double oldTangent[2] = {contact.tangentImpulse[0], contact.tangentImpulse[1]};
 
-  contact.manifold = collideShapes(a.shapes[contact.shapeA], a.xf, b.shapes[contact.shapeB], b.xf,
-                                   speculativeDistance);
+  const Shape& shapeA = a.shapes[contact.shapeA];
+  const Shape& shapeB = b.shapes[contact.shapeB];
+  // A filtered pair of shapes on two bodies that may otherwise touch never gets a point.
+  contact.manifold = filtersAllowContact(shapeA.filter, shapeB.filter)
+                         ? collideShapes(shapeA, a.xf, shapeB, b.xf, speculativeDistance)
+                         : Manifold();
   for (int i = 0; i < contact.manifold.pointCount; ++i) {
     contact.normalImpulse[i] = 0.0;
     contact.tangentImpulse[i] = 0.0;

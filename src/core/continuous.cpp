@@ -79,6 +79,7 @@ void WorldImpl::solveContinuous() {
       still.a0 = still.a1 = other.angle;
       const Shape& otherShape = other.shapes[shapeIndex];
       for (const Shape& shape : body.shapes) {
+        if (!filtersAllowContact(shape.filter, otherShape.filter)) continue;
         const double gap = shapeDistance(shape, start, otherShape, other.xf).distance;
         if (gap >= def.speculativeDistance) {
           impact = std::min(impact, timeOfImpact(shape, sweep, otherShape, still, def.linearSlop));

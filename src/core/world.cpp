@@ -74,7 +74,14 @@ bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
                           (joint.bodyA == bodyB && joint.bodyB == bodyA);
     if (connects && !joint.def.collideConnected) return false;
   }
-  return true;
+  // Filters belong to shapes: the pair of bodies is kept when any two of their shapes may touch,
+  // and updateContact leaves the others without points.
+  for (const Shape& shapeA : a.shapes) {
+    for (const Shape& shapeB : b.shapes) {
+      if (filtersAllowContact(shapeA.filter, shapeB.filter)) return true;
+    }
+  }
+  return false;
 }
 
 void WorldImpl::wakeBody(Body& body) {
@@ -170,6 +177,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   body.linearDamping = def.linearDamping;
   body.angularDamping = def.angularDamping;
   body.bullet = def.bullet;
+  body.awake = def.awake || def.type != BodyType::Dynamic || !w.def.enableSleep;
   body.minExtent = std::numeric_limits<double>::infinity();
   for (const Shape& shape : body.shapes) {
     body.minExtent = std::min(body.minExtent, innerRadius(shape));
