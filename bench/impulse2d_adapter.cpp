@@ -36,6 +36,7 @@ class Impulse2dAdapter : public GroupedAdapter<BodyId> {
     def.timeStep = settings.timeStep;
     def.velocityIterations = settings.velocityIterations;
     def.positionIterations = settings.positionIterations;
+    def.threads = settings.threads;  // the same result for every count
     def.enableSleep = scene.sleep;
     for (const SolverEntry& entry : solvers()) {
       if (entry.name == settings.solver) def.solver = entry.type;
@@ -130,10 +131,6 @@ EngineInfo impulse2dEngine() {
   info.defaults.velocityIterations = WorldDef().velocityIterations;
   info.defaults.positionIterations = WorldDef().positionIterations;
   info.make = [] { return std::make_unique<Impulse2dAdapter>(); };
-  // WorldDef has no thread setting yet; the multi-threaded solver adds one.
-  info.refuses = [](const SceneSpec&, const EngineSettings& settings) {
-    return singleThreadOnly("impulse2d (no WorldDef thread setting yet)", settings);
-  };
   return info;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "constraint_coloring.hpp"
 #include "contact_math.hpp"
@@ -70,6 +71,16 @@ void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorA
   p.tangentImpulse[lane] = tangentImpulse;
 }
 
+// The largest |h| for which a row with arms armA, armB (K = k) keeps K <= 1.5 k when its arms
+// become armA + h and armB - h: K grows by at most S h^2 + 2 B |h| (S = iA + iB,
+// B = iA |armA| + iB |armB|), which is k / 2 at the root below.
+double shiftWithin(const LaneBody& a, const LaneBody& b, double k, double armA, double armB) {
+  const double sum = a.invInertia + b.invInertia;
+  if (!(sum > 0.0)) return std::numeric_limits<float>::max();
+  const double lever = a.invInertia * std::abs(armA) + b.invInertia * std::abs(armB);
+  return (std::sqrt(lever * lever + 0.5 * sum * k) - lever) / sum;
+}
+
 // What restitution reads of a lane that does not bounce.
 void clearRestitution(BundleExtra& e, int lane) {
   e.restitution[lane] = 0.0;
@@ -82,6 +93,7 @@ void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOf
   c.offsetA[lane] = c.offsetB[lane] = ~identityOffset;
   c.invMassA[lane] = c.invInertiaA[lane] = c.invMassB[lane] = c.invInertiaB[lane] = 0.0;
   c.normalX[lane] = c.normalY[lane] = c.friction[lane] = 0.0;
+  c.maxShift[lane] = 0.0f;
   c.k12[lane] = c.inverse11[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
   c.laneFlags[lane] = 0;
   e.k[0][lane] = e.k[1][lane] = 0.0;
@@ -114,6 +126,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
   const double mass = a.invMass + b.invMass;
   double normalArmA[2] = {0.0, 0.0}, normalArmB[2] = {0.0, 0.0};
+  double maxShift = std::numeric_limits<float>::max();
   for (int i = 0; i < 2; ++i) {
     e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
     if (bounces) e.maxNormalImpulse[i][lane] = e.approach[i][lane] = 0.0;
@@ -131,6 +144,8 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
                            b.invInertia * normalArmB[i] * normalArmB[i];
     const double tangentK = mass + a.invInertia * tangentArmA * tangentArmA +
                             b.invInertia * tangentArmB * tangentArmB;
+    maxShift = std::min({maxShift, shiftWithin(a, b, normalK, normalArmA[i], normalArmB[i]),
+                         shiftWithin(a, b, tangentK, tangentArmA, tangentArmB)});
     setPoint(c, i, lane, aAx, aAy, aBx, aBy,
              mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
              normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
@@ -142,6 +157,7 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
       e.approach[i][lane] = relativeX * nx + relativeY * ny;
     }
   }
+  c.maxShift[lane] = static_cast<float>(maxShift);
   const double k11 = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
                      b.invInertia * normalArmB[0] * normalArmB[0];
   if (soft) {

@@ -15,6 +15,7 @@
 // while the rows act at one point of both bodies, the anchors moved by half their bodies'
 // relative move, rA = aA + (dB - dA) / 2 and rB = aB - (dB - dA) / 2: equal and opposite impulses
 // at one point keep angular momentum (with an anchor of its own on each body they would not).
+// The shift is bounded (maxShift) where it would make the step-start masses overshoot.
 #pragma once
 
 #include <cstdint>
@@ -68,6 +69,11 @@ struct ContactBundle {
   bool anySequential;   // of the lanes, summed up by finishFill()
   bool anyRestitution;
   uint8_t laneFlags[kBundleLanes];  // kSequentialLane | kRestitutionLane | kAgainstStaticLane
+  // m, the largest shift of the lever arms (half the relative move along n and along t) for
+  // which no row's K grows by more than half: the masses above were computed at the step's start,
+  // and a row whose K has doubled would overshoot at every iteration. Bodies that move apart fast
+  // (a small body pinched and spun by a motor) reach it; resting and sliding ones never do.
+  float maxShift[kBundleLanes];
 };
 static_assert(sizeof(ContactBundle) % 64 == 0 && alignof(ContactBundle) == 64, "whole lines");
 

@@ -69,8 +69,11 @@ HWY_INLINE Frame<D> frame(D d, const ContactBundle& c, size_t lane, const Bodies
   f.moveX = hn::Sub(b.dx, a.dx);
   f.moveY = hn::Sub(b.dy, a.dy);
   const V<D> half = hn::Set(d, 0.5);
-  f.halfMoveN = hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ny), hn::Mul(f.moveY, f.nx)));
-  f.halfMoveT = hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ty), hn::Mul(f.moveY, f.tx)));
+  const V<D> limit = loadFloat(d, c.maxShift + lane), negLimit = hn::Neg(limit);
+  f.halfMoveN = hn::Min(hn::Max(hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ny), hn::Mul(f.moveY, f.nx))),
+                                negLimit), limit);
+  f.halfMoveT = hn::Min(hn::Max(hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ty), hn::Mul(f.moveY, f.tx))),
+                                negLimit), limit);
   return f;
 }
 

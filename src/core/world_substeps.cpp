@@ -14,9 +14,10 @@
 // SoftStep pushes overlaps and joint gaps apart as stiff, heavily damped springs, and its relax
 // pass takes back the velocity that push added.
 //
-// Each pass goes a colour at a time: the colour's joints (one by one, on scalar views of their
-// bodies) and its contact bundles (the SIMD kernels) in blocks shared among the step's threads
-// (step_workers.hpp); then the overflow, one after the other, on the stepping thread.
+// Each pass goes over the joints a colour at a time (one by one, on scalar views of their bodies),
+// then over the contact bundles a colour at a time (the SIMD kernels), each colour in blocks
+// shared among the step's threads (step_workers.hpp); each overflow, one after the other, on the
+// stepping thread.
 #include "world_impl.hpp"
 
 #include <algorithm>
@@ -54,38 +55,38 @@ void WorldImpl::onJoint(int index, int worker, const JointOp& op, bool pose) {
 void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
                            const BundlePass& pass, bool pose) {
   SubstepBodies& sb = substepBodies;
+  const int colors = contactBundles.colorCount();
+  // The joints first, colour after colour and then their overflow, and the contacts after them:
+  // the contacts' last word keeps jointed bodies out of the ground. Interleaving a colour's
+  // joints with its contacts instead let ragdolls landing at 28 m/s (v3_rain) open their joints
+  // by up to 38 cm and sink 12 cm, where this order keeps them within a few centimetres.
+  if (jointOp) {
+    for (int color = 0; color < colors; ++color) {
+      const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
+      stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock), [&](int block, int worker) {
+        const int from = firstJoint + block * kJointsPerBlock;
+        for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
+          onJoint(k, worker, jointOp, pose);
+        }
+      });
+    }
+    for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) onJoint(k, 0, jointOp, pose);
+  }
+  if (!bundleOp) return;
   auto sink = [&](int worker) {
     BundlePass mine = pass;
     mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(worker) * kStateDoubles);
     return mine;
   };
-  for (int color = 0; color < contactBundles.colorCount(); ++color) {
-    const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
-    const int jointBlocks = jointOp ? blocksOf(endJoint - firstJoint, kJointsPerBlock) : 0;
+  for (int color = 0; color < colors; ++color) {
     const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
-    const int bundleBlocks = bundleOp ? blocksOf(end - first, kBundlesPerBlock) : 0;
-    stepWorkers.stage(jointBlocks + bundleBlocks, [&](int block, int worker) {
-      if (block < jointBlocks) {
-        const int from = firstJoint + block * kJointsPerBlock;
-        for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
-          onJoint(k, worker, jointOp, pose);
-        }
-        return;
-      }
-      const int begin = first + (block - jointBlocks) * kBundlesPerBlock;
+    stepWorkers.stage(blocksOf(end - first, kBundlesPerBlock), [&](int block, int worker) {
+      const int begin = first + block * kBundlesPerBlock;
       bundleOp(sink(worker), begin, std::min(end, begin + kBundlesPerBlock), false, worker);
     });
   }
   // The overflow: one after the other, on this thread.
-  if (jointOp) {
-    const int overflow = contactBundles.colorCount();
-    for (int k = jointStart[overflow]; k < jointStart[overflow + 1]; ++k) {
-      onJoint(k, 0, jointOp, pose);
-    }
-  }
-  if (bundleOp) {
-    bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);
-  }
+  bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);
 }
 
 void WorldImpl::solveSubsteps(double dt) {
