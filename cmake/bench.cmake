@@ -43,8 +43,8 @@ target_link_libraries(impulse2d_device_bench PRIVATE impulse2d_devices)
 
 # Box2D v3 is not packaged: point IMPULSE2D_BENCH_BOX2D_V3_DIR at a v3 install tree (a folder
 # with include/box2d/box2d.h and libbox2d.a in lib/, lib64/ or src/). Its workers run on oneTBB
-# (libtbb-dev). Off unless set; CI never sets it. Its headers share Box2D 2.4's
-# <box2d/box2d.h>, so only its adapter sees them.
+# (libtbb-dev, which the core needs anyway). Off unless set; CI never sets it. Its headers share
+# Box2D 2.4's <box2d/box2d.h>, so only its adapter sees them.
 set(IMPULSE2D_BENCH_BOX2D_V3_DIR "" CACHE PATH
   "A Box2D v3 build or install to benchmark against (include/box2d and libbox2d.a); empty: none")
 if(IMPULSE2D_BENCH_BOX2D_V3_DIR)
@@ -57,7 +57,7 @@ if(IMPULSE2D_BENCH_BOX2D_V3_DIR)
     message(FATAL_ERROR "IMPULSE2D_BENCH_BOX2D_V3_DIR=${IMPULSE2D_BENCH_BOX2D_V3_DIR} holds no "
       "include/box2d/box2d.h and libbox2d.a (a Box2D v3 build or install)")
   endif()
-  find_package(TBB REQUIRED)  # libtbb-dev
+  # TBB::tbb: found by cmake/core.cmake (the core's threads run on oneTBB too).
   message(STATUS "impulse2d_bench: with Box2D v3 (${IMPULSE2D_BOX2D_V3_LIBRARY}, workers on oneTBB)")
   target_sources(impulse2d_bench PRIVATE bench/box2d_v3_adapter.cpp)
   set_source_files_properties(bench/box2d_v3_adapter.cpp PROPERTIES

@@ -22,14 +22,6 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
   return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
 }
 
-void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
-                       double angularB) {
-  a.linearVelocity -= a.invMass * p;
-  a.angularVelocity -= a.invInertia * angularA;
-  b.linearVelocity += b.invMass * p;
-  b.angularVelocity += b.invInertia * angularB;
-}
-
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB) {
   a.center -= a.invMass * p;

@@ -100,8 +100,14 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k);
 
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
-void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
-                       double angularB);
+/// (Inline: the joints' rows call it several times each, in every pass of every sub-step.)
+inline void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                              double angularB) {
+  a.linearVelocity -= a.invMass * p;
+  a.angularVelocity -= a.invInertia * angularA;
+  b.linearVelocity += b.invMass * p;
+  b.angularVelocity += b.invInertia * angularB;
+}
 /// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB);

@@ -16,6 +16,7 @@
 #include <functional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -92,7 +93,7 @@ struct WorldImpl {
   std::vector<char> proxyMoved;  // by proxy id
 
   std::vector<Contact> contacts;                   // solved in this order
-  std::unordered_map<uint64_t, int> contactByKey;  // key -> index in `contacts`, always current
+  std::unordered_set<uint64_t> contactKeys;  // the keys of `contacts`: a pair is found once
   // Reused buffers of findNewContacts, so the step allocates nothing once warm.
   std::vector<std::pair<int, int>> newPairs;
   std::vector<Contact> newContacts;
@@ -139,11 +140,10 @@ struct WorldImpl {
     size_t write = 0;
     for (size_t read = 0; read < contacts.size(); ++read) {
       if (pred(contacts[read])) {
-        contactByKey.erase(contacts[read].key);
+        contactKeys.erase(contacts[read].key);
         continue;
       }
       if (write != read) contacts[write] = contacts[read];
-      contactByKey[contacts[write].key] = static_cast<int>(write);
       ++write;
     }
     contacts.resize(write);

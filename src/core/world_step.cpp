@@ -104,7 +104,7 @@ void WorldImpl::findNewContacts() {
       std::swap(shapeA, shapeB);
     }
     const uint64_t key = contactKey(slotA, shapeA, slotB, shapeB);
-    if (contactByKey.count(key) || !shouldCollide(slotA, slotB)) continue;
+    if (contactKeys.count(key) || !shouldCollide(slotA, slotB)) continue;
     Contact contact;
     contact.key = key;
     contact.bodyA = slotA;
@@ -117,17 +117,14 @@ void WorldImpl::findNewContacts() {
     const Shape& sb = bodies.items[slotB].shapes[shapeB];
     contact.friction = mixFriction(sa.friction, sb.friction);
     contact.restitution = mixRestitution(sa.restitution, sb.restitution);
-    contactByKey.emplace(key, -1);
+    contactKeys.insert(key);
     fresh.push_back(contact);
   }
   // The tree's shape depends on history; sorting by key makes the solve order depend only on
   // which pairs exist.
   std::sort(fresh.begin(), fresh.end(),
             [](const Contact& x, const Contact& y) { return x.key < y.key; });
-  for (Contact& contact : fresh) {
-    contactByKey[contact.key] = static_cast<int>(contacts.size());
-    contacts.push_back(contact);
-  }
+  contacts.insert(contacts.end(), fresh.begin(), fresh.end());
 }
 
 void WorldImpl::updateContacts() {
@@ -166,16 +163,12 @@ void WorldImpl::updateContacts() {
   for (size_t read = 0; read < contacts.size(); ++read) {
     const uint8_t fate = contactFate[read];
     if (fate & kDrop) {
-      contactByKey.erase(contacts[read].key);
+      contactKeys.erase(contacts[read].key);
       continue;
     }
     if (fate & kWakeA) wakeBody(bodies.items[contacts[read].bodyA]);
     if (fate & kWakeB) wakeBody(bodies.items[contacts[read].bodyB]);
-    // The map already holds every kept contact's index; only those that slid down need a write.
-    if (write != read) {
-      contacts[write] = contacts[read];
-      contactByKey[contacts[write].key] = static_cast<int>(write);
-    }
+    if (write != read) contacts[write] = contacts[read];
     ++write;
   }
   contacts.resize(write);
