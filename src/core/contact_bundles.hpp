@@ -73,7 +73,7 @@ struct ContactBundle {
   // which no row's K grows by more than half: the masses above were computed at the step's start,
   // and a row whose K has doubled would overshoot at every iteration. Bodies that move apart fast
   // (a small body pinched and spun by a motor) reach it; resting and sliding ones never do.
-  float maxShift[kBundleLanes];
+  alignas(32) float maxShift[kBundleLanes];  // aligned for one 8-float load
 };
 static_assert(sizeof(ContactBundle) % 64 == 0 && alignof(ContactBundle) == 64, "whole lines");
 
