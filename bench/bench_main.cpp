@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -22,11 +23,12 @@ const char* kUsage =
     "usage: impulse2d_bench [--quick | --full] [--scenes A,B] [--engines A,B] [--solvers A,B]\n"
     "                       [--repeats N] [--sweep-repeats N] [--steps N] [--csv FILE]\n"
     "                       [--memory-csv FILE] [--also SOLVER:VEL:POS[:HZ],...]\n"
+    "                       [--threads N[,M...]]\n"
     "  (default)         every scene, each engine and solver at the engine's defaults (60 Hz)\n"
     "  --quick           short runs and a small scaling series (CI smoke test, < 2 min)\n"
     "  --full            sweep velocity iterations, position iterations and the time step\n"
     "  --scenes A,B      only scenes whose name starts with A or B (e.g. pyramid100,scaling)\n"
-    "  --engines A,B     only these engines (impulse2d, box2d, chipmunk)\n"
+    "  --engines A,B     only these engines (impulse2d, box2d, chipmunk, box2d_v3)\n"
     "  --solvers A,B     only these solvers (e.g. ngs,default)\n"
     "  --repeats N       timed runs per row; ms/step is their median (default 3, quick 1)\n"
     "  --sweep-repeats N timed runs of each swept (non-default) row (default 1)\n"
@@ -37,7 +39,11 @@ const char* kUsage =
     "  --also S:V:P[:HZ] impulse2d rows at these settings (solver, velocity and position\n"
     "                    iterations, steps per second, default 60), timed in the same round\n"
     "                    robin as the engines' defaults (sweep 'chosen'), e.g. "
-    "ngs:8:0,substep:2:3\n";
+    "ngs:8:0,substep:2:3\n"
+    "  --threads N,M     worker threads of each row (default 1): every engine and setting runs\n"
+    "                    once per count, in the same round robin. Box2D v3 uses them as its\n"
+    "                    workers; a single-threaded engine refuses counts above 1 (its rows\n"
+    "                    are skipped with the reason)\n";
 
 struct Options {
   bool quick = false, full = false;
@@ -47,6 +53,7 @@ struct Options {
   int steps = 0;  // 0: each scene's duration
   std::string csv = "bench.csv", memoryCsv;
   std::vector<EngineSettings> also;  // impulse2d settings timed beside the defaults
+  std::vector<int> threads{1};
 };
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -132,6 +139,16 @@ std::string parseOptions(int argc, char** argv, Options* o) {
       if (!value(&o->csv)) return "--csv needs a file name";
     } else if (arg == "--memory-csv") {
       if (!value(&o->memoryCsv)) return "--memory-csv needs a file name";
+    } else if (arg == "--threads") {
+      if (!value(&v)) return "--threads needs a count or a comma-separated list of counts";
+      o->threads.clear();
+      for (const std::string& item : splitList(v)) {
+        char* end = nullptr;
+        const long n = std::strtol(item.c_str(), &end, 10);
+        if (*end != '\0' || n < 1 || n > 256) return "--threads: each count must be 1..256";
+        o->threads.push_back(static_cast<int>(n));
+      }
+      if (o->threads.empty()) return "--threads needs a count or a comma-separated list of counts";
     } else if (arg == "--also") {
       if (!value(&v)) return "--also needs SOLVER:VEL:POS[:HZ],...";
       for (const std::string& item : splitList(v)) {
@@ -218,24 +235,39 @@ int stepsOf(const Job& job, int fixedSteps) {
 // also sampled for the error figures (every engine here is deterministic, so one measured run per
 // job is enough; further runs only add times).
 RunResult runOnce(const Job& job, int fixedSteps, bool measure) {
+  const SceneSpec& scene = *job.scene;
   RunResult result;
   result.steps = stepsOf(job, fixedSteps);
   const int sampleEvery = std::max(1, static_cast<int>(std::lround(0.25 / job.settings.timeStep)));
   std::vector<BodyState> states;
   std::unique_ptr<EngineAdapter> adapter = job.engine->make();
-  adapter->build(*job.scene, job.settings);
-  ErrorMeter meter(*job.scene);
+  adapter->build(scene, job.settings);
+  ErrorMeter meter(scene);
   double seconds = 0.0;
+  int timedSteps = 0;
+  size_t nextEvent = 0;
   for (int s = 1; s <= result.steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
+    // The scene's events happen before their step, timed with it (as in Box2D v3's app).
+    for (; nextEvent < scene.events.size() && scene.events[nextEvent].step == s - 1; ++nextEvent) {
+      const SceneEvent& event = scene.events[nextEvent];
+      if (event.create) {
+        adapter->createGroup(event.group);
+      } else {
+        adapter->destroyGroup(event.group);
+      }
+    }
     adapter->step();
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (s > 1 || scene.timeFirstStep || result.steps == 1) {
+      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++timedSteps;
+    }
     if (measure && s % sampleEvery == 0 && s < result.steps) {
       adapter->read(&states);
       meter.sample(states);
     }
   }
-  result.msPerStep = 1000.0 * seconds / result.steps;
+  result.msPerStep = 1000.0 * seconds / timedSteps;
   if (measure) {
     adapter->read(&states);
     result.errors = meter.finish(states);
@@ -251,10 +283,11 @@ std::string number(double x) {
 }
 
 const char* kCsvHeader =
-    "engine,solver,scene,sweep,time_step,velocity_iterations,position_iterations,bodies,joints,"
-    "steps,ms_per_step,contacts,penetration_mean,penetration_max,drift_max,sink_max,"
-    "joint_gap_mean,joint_gap_max,energy_drift,stood";
+    "engine,solver,scene,sweep,time_step,velocity_iterations,position_iterations,threads,bodies,"
+    "joints,steps,ms_per_step,contacts,penetration_mean,penetration_max,drift_max,sink_max,"
+    "joint_gap_mean,joint_gap_max,energy_drift,escaped,momentum_drift,stood";
 
+// Each scene kind fills the figures that mean something for it; the others stay empty.
 std::string csvRow(const Job& job, const RunResult& r) {
   const SceneSpec& scene = *job.scene;
   const ErrorFigures& e = r.errors;
@@ -264,11 +297,14 @@ std::string csvRow(const Job& job, const RunResult& r) {
   row << job.engine->name << ',' << job.settings.solver << ',' << scene.name << ',' << job.sweep
       << ',' << number(job.settings.timeStep) << ',' << job.settings.velocityIterations << ','
       << (job.engine->hasPositionIterations ? std::to_string(job.settings.positionIterations) : "")
-      << ',' << scene.bodies.size() << ',' << scene.joints.size() << ',' << r.steps << ','
-      << number(r.msPerStep) << ',' << r.contacts << ',' << number(e.penetrationMean) << ','
-      << number(e.penetrationMax) << ',' << (resting ? number(e.driftMax) : "") << ','
-      << (resting ? number(e.sinkMax) : "") << ',' << (jointed ? number(e.jointGapMean) : "") << ','
-      << (jointed ? number(e.jointGapMax) : "") << ',' << number(e.energyDrift) << ','
+      << ',' << job.settings.threads << ',' << scene.bodies.size() << ',' << scene.joints.size()
+      << ',' << r.steps << ',' << number(r.msPerStep) << ',' << r.contacts << ','
+      << number(e.penetrationMean) << ',' << number(e.penetrationMax) << ','
+      << (resting ? number(e.driftMax) : "") << ',' << (resting ? number(e.sinkMax) : "") << ','
+      << (jointed ? number(e.jointGapMean) : "") << ',' << (jointed ? number(e.jointGapMax) : "")
+      << ',' << (e.energyMeaningful ? number(e.energyDrift) : "") << ','
+      << (scene.kind == SceneKind::Contained ? std::to_string(e.escaped) : "") << ','
+      << (scene.kind == SceneKind::Impact ? number(e.momentumDrift) : "") << ','
       << (e.stood ? "true" : "false");
   return row.str();
 }
@@ -318,11 +354,13 @@ int run(const Options& options) {
       engines.push_back(&e);
     }
   }
-  // Per scene: every engine's default row first (they run as one batch, below), then the sweeps.
+  // Per scene: every engine's default row first (they run as one batch, below), then the sweeps;
+  // each once per thread count. A row the engine refuses is skipped with its reason.
   std::vector<Job> jobs;
+  size_t refused = 0;
   for (const SceneSpec& scene : scenes) {
     if (!selected(options.scenes, scene.name)) continue;
-    std::vector<Job> sweeps;
+    std::vector<Job> batch, sweeps;
     for (const EngineInfo* engine : engines) {
       for (const std::string& solver : engine->solvers) {
         if (!options.solvers.empty() && std::find(options.solvers.begin(), options.solvers.end(),
@@ -330,19 +368,38 @@ int run(const Options& options) {
           continue;
         }
         for (const Job& job : jobsFor(*engine, solver, scene, options.full)) {
-          (job.sweep == "default" ? jobs : sweeps).push_back(job);
+          (job.sweep == "default" ? batch : sweeps).push_back(job);
         }
       }
       if (engine->name == "impulse2d") {
         for (const EngineSettings& settings : options.also) {
-          jobs.push_back({engine, &scene, settings, "chosen"});
+          batch.push_back({engine, &scene, settings, "chosen"});
         }
       }
     }
-    jobs.insert(jobs.end(), sweeps.begin(), sweeps.end());
+    batch.insert(batch.end(), sweeps.begin(), sweeps.end());
+    for (const Job& job : batch) {
+      for (const int threads : options.threads) {
+        Job copy = job;
+        copy.settings.threads = threads;
+        const std::string why =
+            job.engine->refuses ? job.engine->refuses(scene, copy.settings) : "";
+        if (why.empty()) {
+          jobs.push_back(copy);
+        } else {
+          std::cerr << "impulse2d_bench: skipping " << job.engine->name << ' '
+                    << job.settings.solver << " on " << scene.name << " with " << threads
+                    << " thread(s): " << why << "\n";
+          ++refused;
+        }
+      }
+    }
   }
   if (jobs.empty()) {
-    std::cerr << "impulse2d_bench: nothing matches --scenes, --engines and --solvers\n";
+    std::cerr << "impulse2d_bench: "
+              << (refused ? "every row was refused (above)"
+                          : "nothing matches --scenes, --engines and --solvers")
+              << "\n";
     return 2;
   }
 
@@ -358,13 +415,14 @@ int run(const Options& options) {
                       bool stood) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    char line[256];
+    char line[320];
     std::snprintf(line, sizeof line,
-                  "[%zu/%zu %.0f s] %s %s %s dt=1/%.0f vel=%d pos=%d run %d/%d: %.3f ms/step%s",
+                  "[%zu/%zu %.0f s] %s %s %s dt=1/%.0f vel=%d pos=%d threads=%d run %d/%d: %.3f "
+                  "ms/step%s",
                   index + 1, jobs.size(), elapsed, job.engine->name.c_str(),
                   job.settings.solver.c_str(), job.scene->name.c_str(), 1.0 / job.settings.timeStep,
-                  job.settings.velocityIterations, job.settings.positionIterations, repeat + 1,
-                  repeats, ms, stood ? "" : " (did not stand)");
+                  job.settings.velocityIterations, job.settings.positionIterations,
+                  job.settings.threads, repeat + 1, repeats, ms, stood ? "" : " (did not stand)");
     std::cerr << (terminal ? "\r\033[K" : "") << line << (terminal ? "" : "\n") << std::flush;
   };
   // Jobs run in batches: the default (and chosen) rows of one scene together, each swept row
@@ -442,5 +500,10 @@ int main(int argc, char** argv) {
     std::cerr << "impulse2d_bench: " << why << " (--help for usage)\n";
     return 2;
   }
-  return run(options);
+  try {
+    return run(options);
+  } catch (const std::exception& e) {  // an engine refusing what a scene asks of it
+    std::cerr << "impulse2d_bench: " << e.what() << "\n";
+    return 1;
+  }
 }

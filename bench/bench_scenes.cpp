@@ -1,5 +1,5 @@
-// The named scenes. Sizes, gaps and materials match scripts/make_hard_scenes.py, so a figure here
-// can be read next to the hard-case tests of the same scene.
+// The project's named scenes. Sizes, gaps and materials match scripts/make_hard_scenes.py, so a
+// figure here can be read next to the hard-case tests of the same scene.
 #include "bench_scene.hpp"
 
 #include <cmath>
@@ -12,9 +12,11 @@ BenchBody box(double x, double y, double w, double h, bool isStatic = false, dou
   BenchBody body;
   body.isStatic = isStatic;
   body.position = Vec2(x, y);
-  body.shape.kind = BenchShape::Kind::Box;
-  body.shape.size = Vec2(w, h);
-  body.shape.density = density;
+  BenchShape shape;
+  shape.kind = BenchShape::Kind::Box;
+  shape.size = Vec2(w, h);
+  shape.density = density;
+  body.shapes.push_back(shape);
   return body;
 }
 
@@ -102,8 +104,10 @@ SceneSpec jointGrid(double duration) {
       BenchBody body;
       body.isStatic = row == 0 && std::abs(col - n / 2) <= 3;
       body.position = Vec2(col - 0.5 * (n - 1), 50.0 - row);
-      body.shape.kind = BenchShape::Kind::Circle;
-      body.shape.radius = 0.4;
+      BenchShape circle;
+      circle.kind = BenchShape::Kind::Circle;
+      circle.radius = 0.4;
+      body.shapes.push_back(circle);
       scene.bodies.push_back(body);
       const int index = row * n + col;
       // Two static neighbours need no joint (Chipmunk aborts on one: its mass matrix is zero).
@@ -140,13 +144,13 @@ std::vector<Vec2> regularPolygon(int sides, double circumradius) {
 SceneSpec fallingShapes(double duration) {
   SceneSpec scene;
   scene.name = "falling_shapes";
-  scene.kind = SceneKind::Falling;
+  scene.kind = SceneKind::Contained;
   scene.duration = duration;
   scene.bodies.push_back(box(0.0, -0.5, 24.0, 1.0, true));
   scene.bodies.push_back(box(-10.5, 15.0, 1.0, 30.0, true));
   scene.bodies.push_back(box(10.5, 15.0, 1.0, 30.0, true));
-  scene.boxLower = Vec2(-10.0, 0.0);
-  scene.boxUpper = Vec2(10.0, 60.0);
+  scene.container.lower = Vec2(-10.0, 0.0);
+  scene.container.upper = Vec2(10.0, 60.0);
   Lcg random;
   const int sides[3] = {3, 5, 6};
   for (int row = 0; row < 25; ++row) {
@@ -154,21 +158,23 @@ SceneSpec fallingShapes(double duration) {
       BenchBody body;
       body.position = Vec2(-9.5 + col, 2.0 + 1.05 * row);
       body.angle = random.uniform(-0.5, 0.5);
+      BenchShape shape;
       switch ((row + col) % 3) {
         case 0:
-          body.shape.kind = BenchShape::Kind::Box;
-          body.shape.size = Vec2(random.uniform(0.4, 0.9), random.uniform(0.4, 0.9));
+          shape.kind = BenchShape::Kind::Box;
+          shape.size = Vec2(random.uniform(0.4, 0.9), random.uniform(0.4, 0.9));
           break;
         case 1:
-          body.shape.kind = BenchShape::Kind::Circle;
-          body.shape.radius = random.uniform(0.2, 0.45);
+          shape.kind = BenchShape::Kind::Circle;
+          shape.radius = random.uniform(0.2, 0.45);
           break;
         default:
-          body.shape.kind = BenchShape::Kind::Polygon;
-          body.shape.vertices =
-              regularPolygon(sides[(row + 2 * col) % 3], random.uniform(0.3, 0.45));
+          shape.kind = BenchShape::Kind::Polygon;
+          shape.radius = 0.0;
+          shape.vertices = regularPolygon(sides[(row + 2 * col) % 3], random.uniform(0.3, 0.45));
           break;
       }
+      body.shapes.push_back(shape);
       scene.bodies.push_back(body);
     }
   }
@@ -176,56 +182,6 @@ SceneSpec fallingShapes(double duration) {
 }
 
 }  // namespace
-
-void nominalMass(const BenchShape& shape, double* mass, double* inertia) {
-  double area = 0.0, polar = 0.0;  // polar: second moment of area about the centroid
-  switch (shape.kind) {
-    case BenchShape::Kind::Box: {
-      const double w = shape.size.x(), h = shape.size.y();
-      area = w * h;
-      polar = area * (w * w + h * h) / 12.0;
-      break;
-    }
-    case BenchShape::Kind::Circle:
-      area = impulse2d::kPi * shape.radius * shape.radius;
-      polar = 0.5 * area * shape.radius * shape.radius;
-      break;
-    case BenchShape::Kind::Polygon: {
-      const size_t n = shape.vertices.size();
-      for (size_t i = 0; i < n; ++i) {
-        const Vec2& p = shape.vertices[i];
-        const Vec2& q = shape.vertices[(i + 1) % n];
-        const double cross = p.x() * q.y() - p.y() * q.x();
-        area += 0.5 * cross;
-        polar += cross * (p.squaredNorm() + p.dot(q) + q.squaredNorm()) / 12.0;
-      }
-      break;
-    }
-  }
-  *mass = shape.density * area;
-  *inertia = shape.density * polar;
-}
-
-impulse2d::ShapeDef toShapeDef(const BenchShape& shape) {
-  impulse2d::ShapeDef def;
-  def.density = shape.density;
-  def.friction = shape.friction;
-  switch (shape.kind) {
-    case BenchShape::Kind::Box:
-      def.kind = impulse2d::ShapeKind::Box;
-      def.size = shape.size;
-      break;
-    case BenchShape::Kind::Circle:
-      def.kind = impulse2d::ShapeKind::Circle;
-      def.radius = shape.radius;
-      break;
-    case BenchShape::Kind::Polygon:
-      def.kind = impulse2d::ShapeKind::Polygon;
-      def.vertices = shape.vertices;
-      break;
-  }
-  return def;
-}
 
 std::vector<SceneSpec> makeScenes(bool quick) {
   const double q = quick ? 0.1 : 1.0;  // quick runs a tenth of the simulated time
@@ -246,6 +202,7 @@ std::vector<SceneSpec> makeScenes(bool quick) {
     scene.scaling = true;
     scenes.push_back(scene);
   }
+  for (SceneSpec& scene : makeV3Scenes(quick)) scenes.push_back(std::move(scene));
   return scenes;
 }
 

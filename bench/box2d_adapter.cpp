@@ -1,10 +1,12 @@
 // Box2D 2.4 (single precision) building the same scenes. Box2D wraps every polygon in a skin of
 // b2_polygonRadius (1 cm); the polygons are shrunk by it so that the collision surface is the
 // scene's geometry, and masses are set from the scene's geometry so all engines move the same
-// bodies.
+// bodies. It has no rounded shapes (capsules and rounded polygons become 8-point outlines, its
+// b2_maxPolygonVertices) and no revolute spring.
 #include <box2d/box2d.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "engine_adapter.hpp"
 
@@ -13,61 +15,33 @@ namespace {
 
 b2Vec2 toB2(const Vec2& v) { return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y())); }
 
-class Box2dAdapter : public EngineAdapter {
+// Every edge of a convex counter-clockwise polygon moved in by `skin`.
+std::vector<Vec2> inset(const std::vector<Vec2>& points, double skin) {
+  const size_t n = points.size();
+  std::vector<Vec2> out;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 in = points[i] - points[(i + n - 1) % n];
+    const Vec2 onward = points[(i + 1) % n] - points[i];
+    const Vec2 n1 = Vec2(in.y(), -in.x()).normalized(),
+               n2 = Vec2(onward.y(), -onward.x()).normalized();
+    out.push_back(points[i] - skin * (n1 + n2) / (1.0 + n1.dot(n2)));
+  }
+  return out;
+}
+
+// Box2D 2.4's filter has 16 bits and a 16-bit group.
+bool fitsFilter(const impulse2d::CollisionFilter& f) {
+  return f.categoryBits <= 0xFFFF && f.groupIndex >= INT16_MIN && f.groupIndex <= INT16_MAX;
+}
+
+class Box2dAdapter : public GroupedAdapter<b2Body*> {
  public:
   void build(const SceneSpec& scene, const EngineSettings& settings) override {
+    startScene(scene, nullptr);
     settings_ = settings;
-    world_ = std::make_unique<b2World>(b2Vec2(0.0f, -9.81f));
-    world_->SetAllowSleeping(false);
-    bodies_.clear();
-    for (const BenchBody& body : scene.bodies) {
-      b2BodyDef def;
-      def.type = body.isStatic ? b2_staticBody : b2_dynamicBody;
-      def.position = toB2(body.position);
-      def.angle = static_cast<float>(body.angle);
-      b2Body* b = world_->CreateBody(&def);
-      b2FixtureDef fixture;
-      fixture.density = static_cast<float>(body.shape.density);
-      fixture.friction = static_cast<float>(body.shape.friction);
-      b2PolygonShape polygon;
-      b2CircleShape circle;
-      const float skin = b2_polygonRadius;
-      if (body.shape.kind == BenchShape::Kind::Box) {
-        polygon.SetAsBox(0.5f * static_cast<float>(body.shape.size.x()) - skin,
-                         0.5f * static_cast<float>(body.shape.size.y()) - skin);
-        fixture.shape = &polygon;
-      } else if (body.shape.kind == BenchShape::Kind::Circle) {
-        circle.m_radius = static_cast<float>(body.shape.radius);
-        fixture.shape = &circle;
-      } else {
-        // Regular polygon: moving every edge in by the skin scales it by (apothem - skin) /
-        // apothem.
-        const size_t n = body.shape.vertices.size();
-        const double apothem =
-            std::cos(impulse2d::kPi / static_cast<double>(n)) * body.shape.vertices[0].norm();
-        const double scale = (apothem - skin) / apothem;
-        b2Vec2 points[b2_maxPolygonVertices];
-        for (size_t i = 0; i < n; ++i) points[i] = toB2(scale * body.shape.vertices[i]);
-        polygon.Set(points, static_cast<int32>(n));
-        fixture.shape = &polygon;
-      }
-      b->CreateFixture(&fixture);
-      if (!body.isStatic) {
-        double mass = 0.0, inertia = 0.0;
-        nominalMass(body.shape, &mass, &inertia);
-        b2MassData data;
-        data.mass = static_cast<float>(mass);
-        data.center.SetZero();
-        data.I = static_cast<float>(inertia);
-        b->SetMassData(&data);
-      }
-      bodies_.push_back(b);
-    }
-    for (const BenchJoint& joint : scene.joints) {
-      b2RevoluteJointDef def;
-      def.Initialize(bodies_[joint.bodyA], bodies_[joint.bodyB], toB2(joint.anchor));
-      world_->CreateJoint(&def);
-    }
+    world_ = std::make_unique<b2World>(toB2(scene.gravity));
+    world_->SetAllowSleeping(scene.sleep);
+    createGroup(-1);
   }
   void step() override {
     world_->Step(static_cast<float>(settings_.timeStep), settings_.velocityIterations,
@@ -77,9 +51,13 @@ class Box2dAdapter : public EngineAdapter {
     states->resize(bodies_.size());
     for (size_t i = 0; i < bodies_.size(); ++i) {
       const b2Body* b = bodies_[i];
+      if (b == nullptr) {
+        (*states)[i].alive = false;
+        continue;
+      }
       const b2Vec2 p = b->GetWorldCenter();
       const b2Vec2 v = b->GetLinearVelocity();
-      (*states)[i] = {Vec2(p.x, p.y), b->GetAngle(), Vec2(v.x, v.y), b->GetAngularVelocity()};
+      (*states)[i] = {Vec2(p.x, p.y), b->GetAngle(), Vec2(v.x, v.y), b->GetAngularVelocity(), true};
     }
   }
   size_t contactCount() const override {
@@ -91,9 +69,75 @@ class Box2dAdapter : public EngineAdapter {
   }
 
  private:
+  b2Body* createBody(int index) override {
+    const BenchBody& body = scene_->bodies[index];
+    b2BodyDef def;
+    def.type = body.isStatic ? b2_staticBody : b2_dynamicBody;
+    def.position = toB2(body.position);
+    def.angle = static_cast<float>(body.angle);
+    def.linearVelocity = toB2(body.velocity);
+    def.linearDamping = static_cast<float>(body.linearDamping);
+    def.awake = body.awake;
+    def.allowSleep = body.canSleep;
+    b2Body* b = world_->CreateBody(&def);
+    for (const BenchShape& shape : body.shapes) addFixture(b, shape);
+    if (!body.isStatic) {
+      double mass = 0.0, inertia = 0.0;
+      nominalMass(body, &mass, &inertia);
+      b2MassData data;
+      data.mass = static_cast<float>(mass);
+      data.center.SetZero();
+      data.I = static_cast<float>(inertia);
+      b->SetMassData(&data);
+    }
+    return b;
+  }
+  void addFixture(b2Body* b, const BenchShape& shape) {
+    b2FixtureDef fixture;
+    fixture.density = static_cast<float>(shape.density);
+    fixture.friction = static_cast<float>(shape.friction);
+    fixture.restitution = static_cast<float>(shape.restitution);
+    fixture.filter.categoryBits = static_cast<uint16>(shape.filter.categoryBits);
+    fixture.filter.maskBits = static_cast<uint16>(shape.filter.maskBits & 0xFFFF);
+    fixture.filter.groupIndex = static_cast<int16>(shape.filter.groupIndex);
+    b2PolygonShape polygon;
+    b2CircleShape circle;
+    const float skin = b2_polygonRadius;
+    if (shape.kind == BenchShape::Kind::Box) {
+      polygon.SetAsBox(0.5f * static_cast<float>(shape.size.x()) - skin,
+                       0.5f * static_cast<float>(shape.size.y()) - skin, toB2(shape.center), 0.0f);
+      fixture.shape = &polygon;
+    } else if (shape.kind == BenchShape::Kind::Circle) {
+      circle.m_p = toB2(shape.center);
+      circle.m_radius = static_cast<float>(shape.radius);
+      fixture.shape = &circle;
+    } else {
+      const std::vector<Vec2> points = inset(outlinePolygon(shape, b2_maxPolygonVertices), skin);
+      b2Vec2 vertices[b2_maxPolygonVertices];
+      for (size_t i = 0; i < points.size(); ++i) vertices[i] = toB2(points[i]);
+      polygon.Set(vertices, static_cast<int32>(points.size()));
+      fixture.shape = &polygon;
+    }
+    b->CreateFixture(&fixture);
+  }
+  void createJoint(int index) override {
+    const BenchJoint& joint = scene_->joints[index];
+    b2RevoluteJointDef def;
+    def.Initialize(bodies_[joint.bodyA], bodies_[joint.bodyB], toB2(joint.anchor));
+    def.referenceAngle = static_cast<float>(joint.referenceAngle);
+    def.enableLimit = joint.enableLimit;
+    def.lowerAngle = static_cast<float>(joint.lower);
+    def.upperAngle = static_cast<float>(joint.upper);
+    def.enableMotor = joint.enableMotor;
+    def.motorSpeed = static_cast<float>(joint.motorSpeed);
+    def.maxMotorTorque = static_cast<float>(joint.maxMotorTorque);
+    world_->CreateJoint(&def);
+  }
+
+  void destroyBody(int index) override { world_->DestroyBody(bodies_[index]); }  // and joints
+
   EngineSettings settings_;
   std::unique_ptr<b2World> world_;
-  std::vector<b2Body*> bodies_;
 };
 
 }  // namespace
@@ -106,6 +150,15 @@ EngineInfo box2dEngine() {
   info.defaults.velocityIterations = 8;  // the Box2D 2.4 manual's recommendation at 60 Hz
   info.defaults.positionIterations = 3;
   info.make = [] { return std::make_unique<Box2dAdapter>(); };
+  info.refuses = [](const SceneSpec& scene, const EngineSettings& settings) -> std::string {
+    for (const BenchBody& body : scene.bodies) {
+      for (const BenchShape& shape : body.shapes) {
+        if (!fitsFilter(shape.filter))
+          return "a collision filter needs more than Box2D 2.4's 16 bits";
+      }
+    }
+    return singleThreadOnly("Box2D 2.4", settings);
+  };
   return info;
 }
 

@@ -22,7 +22,10 @@ struct ErrorFigures {
   double sinkMax = 0.0;          ///< m, largest downward displacement (resting scenes)
   double jointGapMean = 0.0;     ///< m, anchor separation, mean over joints and samples
   double jointGapMax = 0.0;      ///< m, largest in any sample
-  double energyDrift = 0.0;      ///< (E_end - E_start) / (M g H), see docs/benchmarks.md
+  double energyDrift = 0.0;      ///< (E_end - E_start) / scale, see docs/benchmarks.md
+  bool energyMeaningful = true;  ///< false when motors or events add or remove energy
+  int escaped = 0;               ///< bodies outside the container at the end (Contained)
+  double momentumDrift = 0.0;    ///< |P_end - P_start| / |P_start| (Impact)
   bool stood = true;
   bool finite = true;  ///< every state stayed finite
 };
@@ -37,14 +40,17 @@ class ErrorMeter {
 
  private:
   double energy(const std::vector<BodyState>& states) const;
+  Vec2 momentum(const std::vector<BodyState>& states) const;
+  bool inside(const std::vector<BodyState>& states, size_t body) const;
 
   const SceneSpec& scene_;
-  std::vector<impulse2d::Shape> shapes_;
+  std::vector<std::vector<impulse2d::Shape>> shapes_;  // per body, in its frame
   std::vector<double> mass_, inertia_;
   std::vector<BodyState> initial_;
   std::vector<Vec2> localAnchorA_, localAnchorB_;
   std::vector<std::pair<int, int>> jointPairs_;  // sorted, lower body first
   double startEnergy_ = 0.0, energyScale_ = 1.0;
+  Vec2 startMomentum_ = Vec2::Zero();
   ErrorFigures figures_;
   double penetrationSum_ = 0.0, gapSum_ = 0.0;
   size_t penetrationCount_ = 0, gapCount_ = 0;

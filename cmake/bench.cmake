@@ -2,8 +2,12 @@
 # installed (libbox2d-dev, libchipmunk-dev). The package never depends on them: each adapter is
 # compiled in only when its library is found, and a compile definition says so.
 add_executable(impulse2d_bench
+  bench/bench_human.cpp
   bench/bench_main.cpp
   bench/bench_scenes.cpp
+  bench/bench_scenes_v3.cpp
+  bench/bench_shapes.cpp
+  bench/engine_common.cpp
   bench/impulse2d_adapter.cpp
   bench/memory_probe.cpp
   bench/metrics.cpp)
@@ -36,6 +40,31 @@ endif()
 # What the robot devices cost (a scan, a step with and without them), ROS-free.
 add_executable(impulse2d_device_bench bench/device_cost.cpp)
 target_link_libraries(impulse2d_device_bench PRIVATE impulse2d_devices)
+
+# Box2D v3 is not packaged: point IMPULSE2D_BENCH_BOX2D_V3_DIR at a v3 install tree (a folder
+# with include/box2d/box2d.h and libbox2d.a in lib/, lib64/ or src/). Its workers run on oneTBB
+# (libtbb-dev, which the core needs anyway). Off unless set; CI never sets it. Its headers share
+# Box2D 2.4's <box2d/box2d.h>, so only its adapter sees them.
+set(IMPULSE2D_BENCH_BOX2D_V3_DIR "" CACHE PATH
+  "A Box2D v3 build or install to benchmark against (include/box2d and libbox2d.a); empty: none")
+if(IMPULSE2D_BENCH_BOX2D_V3_DIR)
+  find_path(IMPULSE2D_BOX2D_V3_INCLUDE_DIR box2d/box2d.h
+    PATHS ${IMPULSE2D_BENCH_BOX2D_V3_DIR}/include NO_DEFAULT_PATH)
+  find_library(IMPULSE2D_BOX2D_V3_LIBRARY NAMES libbox2d.a
+    PATHS ${IMPULSE2D_BENCH_BOX2D_V3_DIR}
+    PATH_SUFFIXES lib lib64 src NO_DEFAULT_PATH)
+  if(NOT IMPULSE2D_BOX2D_V3_INCLUDE_DIR OR NOT IMPULSE2D_BOX2D_V3_LIBRARY)
+    message(FATAL_ERROR "IMPULSE2D_BENCH_BOX2D_V3_DIR=${IMPULSE2D_BENCH_BOX2D_V3_DIR} holds no "
+      "include/box2d/box2d.h and libbox2d.a (a Box2D v3 build or install)")
+  endif()
+  # TBB::tbb: found by cmake/core.cmake (the core's threads run on oneTBB too).
+  message(STATUS "impulse2d_bench: with Box2D v3 (${IMPULSE2D_BOX2D_V3_LIBRARY}, workers on oneTBB)")
+  target_sources(impulse2d_bench PRIVATE bench/box2d_v3_adapter.cpp)
+  set_source_files_properties(bench/box2d_v3_adapter.cpp PROPERTIES
+    COMPILE_OPTIONS "-isystem;${IMPULSE2D_BOX2D_V3_INCLUDE_DIR}")
+  target_link_libraries(impulse2d_bench PRIVATE ${IMPULSE2D_BOX2D_V3_LIBRARY} TBB::tbb)
+  target_compile_definitions(impulse2d_bench PRIVATE IMPULSE2D_BENCH_BOX2D_V3)
+endif()
 
 if(NOT IMPULSE2D_CORE_ONLY)
   install(TARGETS impulse2d_bench impulse2d_device_bench

@@ -4,7 +4,17 @@ file(GLOB IMPULSE2D_CORE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/cor
 add_library(impulse2d_core ${IMPULSE2D_CORE_SOURCES})
 target_include_directories(impulse2d_core PUBLIC ${PROJECT_SOURCE_DIR}/include
   PRIVATE ${PROJECT_SOURCE_DIR}/src/core)
-target_link_libraries(impulse2d_core PUBLIC Eigen3::Eigen)
+# Highway: the contact kernels' SIMD, compiled for every x86 instruction set and chosen when the
+# program starts (src/core/contact_kernels.cpp); oneTBB: the step's threads (step_workers.cpp).
+find_package(HWY REQUIRED)
+# catkin_lint knows a FindTBB module of ROS's cmake_modules package; Debian's libtbb-dev ships
+# its own TBBConfig.cmake, which this finds.
+#catkin_lint: ignore_once missing_cmake_modules
+find_package(TBB REQUIRED)
+target_link_libraries(impulse2d_core PUBLIC Eigen3::Eigen PRIVATE hwy::hwy TBB::tbb)
+# Bit-identical results on every instruction set: no multiply-add contracted into one rounding.
+target_compile_options(impulse2d_core PRIVATE -ffp-contract=off)
+target_compile_definitions(impulse2d_core PRIVATE HWY_COMPILE_ALL_ATTAINABLE)
 set_target_properties(impulse2d_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # The solver's rows are written on scalars (src/core/contact_math.hpp): GCC's SLP vectorizer
 # would pair two scalar updates of a velocity into one 16-byte load that the CPU cannot forward

@@ -7,6 +7,8 @@ target_compile_definitions(impulse2d_hash_test PRIVATE
   IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   IMPULSE2D_SIM_EXECUTABLE="$<TARGET_FILE:impulse2d_sim>")
 add_dependencies(impulse2d_hash_test impulse2d_node impulse2d_sim ${PROJECT_NAME}_generate_messages_cpp)
+# The same on three threads (~threads): the state does not depend on them.
+add_rostest(test/ros/hash_threads.test DEPENDENCIES impulse2d_hash_test)
 
 add_rostest_gtest(impulse2d_load_test test/ros/load.test test/ros/load_test.cpp)
 target_link_libraries(impulse2d_load_test ${catkin_LIBRARIES})

@@ -4,7 +4,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake clang-format
   catkin python3-catkin-pkg ros-core-dev python3-rostest python3-rosunit
-  libeigen3-dev libyaml-cpp-dev libgtest-dev googletest
+  libeigen3-dev libhwy-dev libtbb-dev libyaml-cpp-dev libgtest-dev googletest
   libnodeletlib-dev libnodeletlib-tools pluginlib-dev libtf2-ros-dev libtf2-msgs-dev
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libstd-msgs-dev libstd-srvs-dev
   libgeometry-msgs-dev libsensor-msgs-dev libvisualization-msgs-dev libros-rosgraph-msgs-dev

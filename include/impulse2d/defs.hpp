@@ -116,6 +116,10 @@ struct WorldDef {
   double contactDampingRatio = 10.0;  ///< strongly over-damped: no bounce from the push
   double jointHertz = 60.0;           ///< Hz
   double jointDampingRatio = 2.0;
+  /// Threads that step the sub-stepping solvers (substep, soft): 1 runs on the calling thread;
+  /// more share each colour of contacts among oneTBB tasks. The result is bit-identical for
+  /// any number.
+  int threads = 1;
   bool enableSleep = true;               ///< still islands stop costing anything
   double timeToSleep = 0.5;              ///< s an island must be still before it sleeps
   double sleepLinearTolerance = 0.01;    ///< m/s, slower counts as still
@@ -136,6 +140,21 @@ enum class RemovalCause {
 
 enum class ShapeKind { Box, Circle, Polygon };
 
+/// Which shapes may touch, as in Box2D: two shapes of the same non-zero group always collide
+/// (positive group) or never do (negative group); otherwise they collide only when each one's
+/// mask has a bit of the other's category. The defaults collide with everything.
+struct CollisionFilter {
+  uint64_t categoryBits = 1;         ///< what this shape is
+  uint64_t maskBits = ~uint64_t(0);  ///< what it collides with
+  int32_t groupIndex = 0;
+};
+
+/// Whether two shapes with these filters may touch.
+inline bool filtersAllowContact(const CollisionFilter& a, const CollisionFilter& b) {
+  if (a.groupIndex == b.groupIndex && a.groupIndex != 0) return a.groupIndex > 0;
+  return (a.maskBits & b.categoryBits) != 0 && (b.maskBits & a.categoryBits) != 0;
+}
+
 struct ShapeDef {
   ShapeKind kind = ShapeKind::Box;
   Vec2 size = Vec2(1.0, 1.0);  ///< box: full width and height (m)
@@ -146,6 +165,7 @@ struct ShapeDef {
   double density = 1.0;        ///< kg/m^2
   double friction = 0.6;
   double restitution = 0.0;
+  CollisionFilter filter;
 };
 
 enum class BodyType { Static, Kinematic, Dynamic };
@@ -161,6 +181,9 @@ struct BodyDef {
   double linearDamping = 0.0;    ///< 1/s
   double angularDamping = 0.0;   ///< 1/s
   bool bullet = false;           ///< continuous collision against every body, not only static ones
+  /// false: a dynamic body is created asleep, as if it had come to rest, and costs nothing until
+  /// something touches it or a method wakes it (a world that does not sleep wakes it at once).
+  bool awake = true;
   double mass = 0.0;  ///< kg; > 0 overrides the shapes' densities (inertia scales with it)
   /// kg m^2 about the centre of mass; > 0 overrides what the shapes give (e.g. a URDF inertial).
   double inertia = 0.0;

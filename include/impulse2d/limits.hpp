@@ -18,6 +18,8 @@ constexpr std::size_t kMaxShapesPerBody = 64;
 constexpr int kMaxPolygonVertices = 16;
 /// Joints alive in one world at a time.
 constexpr std::size_t kMaxJoints = 65536;
+/// Threads one world steps on (WorldDef::threads).
+constexpr int kMaxThreads = 256;
 /// Characters of a body or joint name (they become tf frame names).
 constexpr std::size_t kMaxNameLength = 256;
 /// Bytes of scene text (YAML, or URDF), read from a file or received by a service.

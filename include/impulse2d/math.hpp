@@ -26,6 +26,12 @@ struct Rot {
 
   Rot() = default;
   explicit Rot(double angle) : c(std::cos(angle)), s(std::sin(angle)) {}
+  static Rot fromCosSin(double cosine, double sine) {
+    Rot r;
+    r.c = cosine;
+    r.s = sine;
+    return r;
+  }
   double angle() const { return std::atan2(s, c); }
   Vec2 apply(const Vec2& v) const { return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()); }
   Vec2 applyInverse(const Vec2& v) const {

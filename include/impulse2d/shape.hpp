@@ -49,6 +49,7 @@ struct Shape {
   double density = 1.0;      ///< kg/m^2
   double friction = 0.6;     ///< Coulomb coefficient
   double restitution = 0.0;  ///< 0 = no bounce, 1 = elastic
+  CollisionFilter filter;
 };
 
 /// Builds a polygon from points in any winding. Returns an empty string on success, otherwise a

@@ -25,7 +25,7 @@ mkdir -p "$STAGE_RESULTS"
 # The gtest programs run directly, and the rostests (test/ros/NAME.test); TARGETS builds them
 # all: the gtests, the rostests' clients, the node, the nodelet plugin and the CLI.
 GTESTS=(impulse2d_unit_tests impulse2d_ros_unit_tests impulse2d_sim_world_limits_tests)
-ROSTESTS=(world_node world_nodelet hash urdf recipe robot)
+ROSTESTS=(world_node world_nodelet hash hash_threads urdf recipe robot)
 TARGETS=("${GTESTS[@]}" impulse2d_world_tests impulse2d_hash_test impulse2d_urdf_tests
   impulse2d_recipe_test impulse2d_robot_tests impulse2d_node impulse2d_nodelet impulse2d_sim)
 # Registered with catkin but not run here (they run in the release build of scripts/test.sh):

@@ -19,11 +19,13 @@ cases = []  # (name, failure message or None)
 def check(name, ok, why=""):
     cases.append((name, None if ok else why))
 
-HEADER = ("engine,solver,scene,sweep,time_step,velocity_iterations,position_iterations,bodies,"
-          "joints,steps,ms_per_step,contacts,penetration_mean,penetration_max,drift_max,sink_max,"
-          "joint_gap_mean,joint_gap_max,energy_drift,stood").split(",")
+HEADER = ("engine,solver,scene,sweep,time_step,velocity_iterations,position_iterations,threads,"
+          "bodies,joints,steps,ms_per_step,contacts,penetration_mean,penetration_max,drift_max,"
+          "sink_max,joint_gap_mean,joint_gap_max,energy_drift,escaped,momentum_drift,"
+          "stood").split(",")
 SCENES = ["pyramid100", "pyramid20", "stack20", "mass_ratio", "bridge20", "joint_grid",
-          "falling_shapes", "scaling_105", "scaling_528"]
+          "falling_shapes", "scaling_105", "scaling_528", "v3_joint_grid", "v3_large_pyramid",
+          "v3_many_pyramids", "v3_rain", "v3_smash", "v3_spinner", "v3_tumbler"]
 ENGINES = ["impulse2d", "box2d", "chipmunk"]
 
 check("runs within 120 s and exits 0", status == 0, "exit status %d" % status)
@@ -43,7 +45,7 @@ for scene in SCENES:
 
 bad = []
 for r in rows:
-    for key in HEADER[4:19]:
+    for key in HEADER[4:22]:
         value = r.get(key, "")
         if value == "":
             continue
@@ -64,11 +66,14 @@ for r in rows:
         for key in ("penetration_mean", "penetration_max"):
             if not 0.0 <= float(r[key]) < 1.0: insane.append(tag + " " + key)
         if r["joint_gap_max"] and not 0.0 <= float(r["joint_gap_max"]) < 1.0: insane.append(tag + " joint gap")
+        if int(r["threads"]) != 1: insane.append(tag + " threads")
+        if r["escaped"] and int(r["escaped"]) < 0: insane.append(tag + " escaped")
+        if r["momentum_drift"] and not 0.0 <= float(r["momentum_drift"]) < 1.0: insane.append(tag + " momentum")
         if r["stood"] not in ("true", "false"): insane.append(tag + " stood")
     except (KeyError, ValueError) as e:
         insane.append("%s: %s" % (tag, e))
 check("values in range", not insane, "; ".join(insane[:5]))
-for scene in ("stack20", "pyramid20", "bridge20"):
+for scene in ("stack20", "pyramid20", "bridge20", "v3_large_pyramid", "v3_tumbler"):
     mine = [r for r in rows if r["engine"] == "impulse2d" and r["scene"] == scene and r["solver"] == "substep"]
     check("impulse2d substep stands on " + scene, bool(mine) and all(r["stood"] == "true" for r in mine),
           "did not stand" if mine else "missing")

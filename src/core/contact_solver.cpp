@@ -18,7 +18,6 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
                             const WorldDef& def, double dt) {
   constraints_.clear();
   extras_.clear();
-  substeps_ = 0;
   bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
   const double inverseDt = 1.0 / dt;
@@ -34,7 +33,6 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     c.b = bodies.entryOf(contact.bodyB);
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
-    c.againstStatic = !(a.invMass > 0.0 && b.invMass > 0.0);
     c.blockSolve = false;
     c.k11 = c.k12 = c.k22 = 0.0;
     c.inverse11 = c.inverse12 = c.inverse22 = 0.0;
@@ -53,8 +51,6 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       p.normalArmB = cross(rB, m.normal);
       p.tangentArmA = cross(rA, tangent);
       p.tangentArmB = cross(rB, tangent);
-      p.anchorA = a.q.applyInverse(rA);
-      p.anchorB = b.q.applyInverse(rB);
       const Vec2 halfGap = 0.5 * mp.separation * m.normal;
       extra.localA[i] = a.q.applyInverse(mp.point - halfGap - a.center);
       extra.localB[i] = b.q.applyInverse(mp.point + halfGap - b.center);
@@ -62,8 +58,6 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       p.tangentImpulse = contact.tangentImpulse[i];
       p.normalMass = rowMass(a, b, p.normalArmA, p.normalArmB);
       p.tangentMass = rowMass(a, b, p.tangentArmA, p.tangentArmB);
-      p.separation = mp.separation;
-      p.totalNormalImpulse = p.totalTangentImpulse = p.maxNormalImpulse = 0.0;
       extra.approachVelocity[i] =
           rowSpeed(a, b, m.normal.x(), m.normal.y(), p.normalArmA, p.normalArmB);
       if (mp.separation > 0.0) {
@@ -197,7 +191,7 @@ void ContactSolver::applyRestitution(double threshold) {
       ContactConstraintPoint& p = c.points[i];
       const double approach = extras_[k].approachVelocity[i];
       // Only points that pushed: a speculative point the bodies never reached does not bounce.
-      if (approach > -threshold || std::max(p.normalImpulse, p.maxNormalImpulse) == 0.0) continue;
+      if (approach > -threshold || p.normalImpulse == 0.0) continue;
       SolverBody& a = bodies[c.a];
       SolverBody& b = bodies[c.b];
       const double vn = rowSpeed(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB);
@@ -205,7 +199,6 @@ void ContactSolver::applyRestitution(double threshold) {
       const double total = std::max(p.normalImpulse - p.normalMass * (vn - target), 0.0);
       const double delta = total - p.normalImpulse;
       p.normalImpulse = total;
-      p.totalNormalImpulse += delta;
       applyRowImpulse(a, b, c.normal.x(), c.normal.y(), p.normalArmA, p.normalArmB, delta);
     }
   }
@@ -216,10 +209,8 @@ void ContactSolver::storeImpulses() {
     const ContactConstraint& c = constraints_[k];
     Contact& contact = *extras_[k].contact;
     for (int i = 0; i < c.pointCount; ++i) {
-      // Always the whole step's impulse; the sub-steps divide it again for their warm start.
-      const ContactConstraintPoint& p = c.points[i];
-      contact.normalImpulse[i] = substeps_ > 0 ? p.totalNormalImpulse : p.normalImpulse;
-      contact.tangentImpulse[i] = substeps_ > 0 ? p.totalTangentImpulse : p.tangentImpulse;
+      contact.normalImpulse[i] = c.points[i].normalImpulse;
+      contact.tangentImpulse[i] = c.points[i].tangentImpulse;
     }
   }
 }

@@ -1,4 +1,5 @@
-// The contact part of the sequential-impulse solver: effective masses and biases computed once
+// The contact part of the one-pass solvers (baumgarte, ngs; the sub-stepping ones are in
+// contact_bundles.hpp): effective masses and biases computed once
 // per step (pre-step), then Gauss-Seidel iterations over the points with accumulated impulses
 // clamped (normal >= 0, friction inside the cone |t| <= mu * n).
 //
@@ -28,13 +29,7 @@ struct ContactConstraintPoint {
   double tangentArmA, tangentArmB;  // cross(rA, t), cross(rB, t), t = perp(n)
   double normalImpulse, tangentImpulse;
   double normalMass, tangentMass;
-  double targetVelocity;  // one-pass solvers: the normal velocity the point must reach
-  double separation;      // at the pre-step
-  // Sub-steps: the contact point fixed in each body (body frame, from the centre of mass), so
-  // the separation can be followed through the sub-steps without a new narrow phase.
-  Vec2 anchorA, anchorB;
-  double totalNormalImpulse, totalTangentImpulse;  // summed over the sub-steps
-  double maxNormalImpulse;  // largest of any sub-step (restitution: did it push at all?)
+  double targetVelocity;  // the normal velocity the point must reach
 };
 
 struct ContactConstraint {
@@ -44,7 +39,6 @@ struct ContactConstraint {
   // Two-point manifolds whose points are not (nearly) redundant solve both normal impulses at
   // once: k is their 2x2 effective-mass matrix, inverse its inverse (both used when set).
   bool blockSolve;
-  bool againstStatic;  // one body cannot move (the soft step's stiffer spring)
   Vec2 normal;
   double friction, restitution;
   double k11, k12, k22;
@@ -79,32 +73,13 @@ class ContactSolver {
   bool solvePositions(const WorldDef& def);
   size_t size() const { return constraints_.size(); }
 
-  // --- sub-stepping solvers (contact_solver_substeps.cpp) ---
-  /// After prepare(): sets the soft step's springs for sub-steps of h and turns the arbiters'
-  /// whole-step impulses into one sub-step's warm start.
-  void prepareSubsteps(const WorldDef& def, int substeps, double h);
-  /// One iteration at the current poses. The soft step's first pass pushes out of overlaps
-  /// (useBias); the relax pass, the last of a sub-step, adds the sub-step's impulses to the
-  /// step's totals.
-  void solveSubstep(double h, bool useBias, bool relax, double maxPushVelocity);
-
  private:
   /// Friction rows of one contact, clamped to the cone of its current normal impulses.
   static void solveFriction(ContactConstraint& c, SolverBody& a, SolverBody& b);
   /// Both normal rows of a two-point manifold, rigid, aiming at the given normal velocities.
   static void solveNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b, double target1,
                                double target2);
-  /// The soft step's push: both normal rows, each a spring where its point touches.
-  void solveSoftNormalBlock(ContactConstraint& c, SolverBody& a, SolverBody& b,
-                            const double bias[2]) const;
-  /// The soft step's contact spring (stiffer against a body that cannot move).
-  const Feedback& softness(const ContactConstraint& c) const {
-    return c.againstStatic ? staticSoft_ : dynamicSoft_;
-  }
-
-  int substeps_ = 0;                   // 0: a one-pass solver (Baumgarte or NGS)
-  SolverBodies* bodies_ = nullptr;     // this step's; entries may be added until the solve starts
-  Feedback dynamicSoft_, staticSoft_;  // the soft step's contact springs
+  SolverBodies* bodies_ = nullptr;  // this step's; entries may be added until the solve starts
 
   std::vector<ContactConstraint> constraints_;
   std::vector<ContactConstraintExtra> extras_;  // by constraint

@@ -54,6 +54,10 @@ class DynamicTree {
   ///        |  c  |                                     half extents h) is on one side
   ///        +-----+
   ///   p1 ---------------> p2
+  ///
+  /// visit(proxy, maxFraction) returns the fraction to clip the segment to, or a negative
+  /// number to end the cast. A hit at fraction 0 (a ray that starts inside a shape) does not end
+  /// it: other shapes may contain the start too, and the caller chooses among equals.
   template <class Visit>
   void rayCast(const Vec2& p1, const Vec2& p2, double maxFraction, Visit&& visit) const {
     if (root_ == kNull) return;
@@ -77,7 +81,7 @@ class DynamicTree {
       if (std::abs(v.dot(p1 - c)) - absV.dot(h) > 0.0) continue;
       if (node.isLeaf()) {
         const double clipped = visit(id, maxFraction);
-        if (clipped <= 0.0) return;
+        if (clipped < 0.0) return;
         if (clipped < maxFraction) {
           maxFraction = clipped;
           box = segmentBox(maxFraction);

@@ -22,14 +22,6 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
   return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
 }
 
-void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
-                       double angularB) {
-  a.linearVelocity -= a.invMass * p;
-  a.angularVelocity -= a.invInertia * angularA;
-  b.linearVelocity += b.invMass * p;
-  b.angularVelocity += b.invInertia * angularB;
-}
-
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB) {
   a.center -= a.invMass * p;
@@ -58,8 +50,25 @@ Softness softness(double frequency, double dampingRatio, double effectiveMass, d
   return soft;
 }
 
-void initJoint(Joint& joint, const Body& a, const Body& b) {
-  const JointDef& def = joint.def;
+JointParams paramsOf(const JointDef& def) {
+  JointParams p;
+  p.type = def.type;
+  p.enableLimit = def.enableLimit;
+  p.enableMotor = def.enableMotor;
+  p.collideConnected = def.collideConnected;
+  p.lower = def.lower;
+  p.upper = def.upper;
+  p.motorSpeed = def.motorSpeed;
+  p.maxMotorTorque = def.maxMotorTorque;
+  p.frequency = def.frequency;
+  p.dampingRatio = def.dampingRatio;
+  p.minLength = def.minLength;
+  p.maxLength = def.maxLength;
+  return p;
+}
+
+void initJoint(Joint& joint, const JointDef& def, const Body& a, const Body& b) {
+  joint.def = paramsOf(def);
   joint.localAnchorA = a.xf.applyInverse(def.anchor);
   joint.localAnchorB = b.xf.applyInverse(def.anchor);
   joint.referenceAngle = b.angle - a.angle;

@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 
+#include <limits>
+
 #include "feedback.hpp"
 #include "solver_body.hpp"
 
@@ -18,9 +20,23 @@ constexpr double kAngularSlop = 2.0 * kPi / 180.0;           // rad left alone b
 constexpr double kMaxAngularCorrection = 8.0 * kPi / 180.0;  // rad per NGS pass
 constexpr double kMaxJointLinearCorrection = 0.2;            // m per NGS pass
 
+/// The numbers of a joint's definition that the solver reads: JointDef without its name, its
+/// bodies and its creation-time geometry, so that a Joint copies without allocating (the
+/// sub-stepping solvers lay a colour's joints side by side each step). The world keeps the
+/// whole definition apart (WorldImpl::jointDefs).
+struct JointParams {
+  JointType type = JointType::Revolute;
+  bool enableLimit = false, enableMotor = false, collideConnected = false;
+  double lower = 0.0, upper = 0.0;
+  double motorSpeed = 0.0, maxMotorTorque = 0.0;
+  double frequency = 0.0, dampingRatio = 0.0;
+  double minLength = 0.0, maxLength = std::numeric_limits<double>::infinity();
+};
+JointParams paramsOf(const JointDef& def);
+
 struct Joint {
   JointId id;
-  JointDef def;
+  JointParams def;
   int bodyA = -1, bodyB = -1;    // slot indices
   int entryA = -1, entryB = -1;  // the bodies' SolverBodies entries, while the step solves it
   Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
@@ -59,8 +75,8 @@ struct Joint {
   Feedback feedback, lowerFeedback, upperFeedback;
 };
 
-/// Initialises anchors and reference angle from a validated def.
-void initJoint(Joint& joint, const Body& a, const Body& b);
+/// Initialises the parameters, anchors and reference angle from a validated definition.
+void initJoint(Joint& joint, const JointDef& def, const Body& a, const Body& b);
 
 /// Computes the rows of this pass at the bodies' current poses; dt is the pass's time step (the
 /// sub-step for the soft step).
@@ -84,8 +100,14 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k);
 
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
-void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
-                       double angularB);
+/// (Inline: the joints' rows call it several times each, in every pass of every sub-step.)
+inline void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                              double angularB) {
+  a.linearVelocity -= a.invMass * p;
+  a.angularVelocity -= a.invInertia * angularA;
+  b.linearVelocity += b.invMass * p;
+  b.angularVelocity += b.invInertia * angularB;
+}
 /// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB);

@@ -118,7 +118,7 @@ void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b) {
 }
 
 void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
-  const JointDef& def = joint.def;
+  const JointParams& def = joint.def;
   if (def.enableMotor) {
     const double maxImpulse = def.maxMotorTorque * dt;  // a force (N) for this joint
     const double total =

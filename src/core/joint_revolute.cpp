@@ -38,7 +38,7 @@ void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
 }
 
 void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
-  const JointDef& def = joint.def;
+  const JointParams& def = joint.def;
   if (def.enableMotor) {
     const double cdot = b.angularVelocity - a.angularVelocity - def.motorSpeed;
     const double maxImpulse = def.maxMotorTorque * dt;

@@ -119,6 +119,7 @@ std::string makeShape(const ShapeDef& def, Shape* out) {
   shape.density = def.density;
   shape.friction = def.friction;
   shape.restitution = def.restitution;
+  shape.filter = def.filter;
   switch (def.kind) {
     case ShapeKind::Box:
       if (!isFinite(def.size) || def.size.x() < kMinFeatureSize || def.size.y() < kMinFeatureSize) {

@@ -74,6 +74,9 @@ std::string World::validate(const WorldDef& def) {
   if (def.positionIterations < 0 || def.positionIterations > kMaxIterations) {
     return "position_iterations: must be in [0, " + std::to_string(kMaxIterations) + "]";
   }
+  if (def.threads < 1 || def.threads > kMaxThreads) {
+    return "threads: must be in [1, " + std::to_string(kMaxThreads) + "]";
+  }
   if (std::string(solverName(def.solver)) == "unknown") {
     return "solver: must be " + solverNameList();
   }

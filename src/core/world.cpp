@@ -28,6 +28,7 @@ void WorldImpl::markMoved(int proxy) {
 
 void WorldImpl::createProxies(Body& body) {
   body.proxies.clear();
+  body.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
     const int proxy =
@@ -49,6 +50,7 @@ void WorldImpl::destroyProxies(Body& body) {
 }
 
 void WorldImpl::updateProxies(Body& body, bool forced) {
+  if (forced) body.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf);
     const int proxy = body.proxies[i];
@@ -72,7 +74,14 @@ bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
                           (joint.bodyA == bodyB && joint.bodyB == bodyA);
     if (connects && !joint.def.collideConnected) return false;
   }
-  return true;
+  // Filters belong to shapes: the pair of bodies is kept when any two of their shapes may touch,
+  // and updateContact leaves the others without points.
+  for (const Shape& shapeA : a.shapes) {
+    for (const Shape& shapeB : b.shapes) {
+      if (filtersAllowContact(shapeA.filter, shapeB.filter)) return true;
+    }
+  }
+  return false;
 }
 
 void WorldImpl::wakeBody(Body& body) {
@@ -168,6 +177,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   body.linearDamping = def.linearDamping;
   body.angularDamping = def.angularDamping;
   body.bullet = def.bullet;
+  body.awake = def.awake || def.type != BodyType::Dynamic || !w.def.enableSleep;
   body.minExtent = std::numeric_limits<double>::infinity();
   for (const Shape& shape : body.shapes) {
     body.minExtent = std::min(body.minExtent, innerRadius(shape));
@@ -290,12 +300,13 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
   const int slot = w.joints.acquire();
   Joint& joint = w.joints.items[slot];
   joint.id = JointId{slot, w.joints.generation[slot]};
-  joint.def = def;
+  if (w.jointDefs.size() < w.joints.items.size()) w.jointDefs.resize(w.joints.items.size());
+  w.jointDefs[slot] = def;
   joint.bodyA = def.bodyA.index;
   joint.bodyB = def.bodyB.index;
   Body& a = w.bodies.items[joint.bodyA];
   Body& b = w.bodies.items[joint.bodyB];
-  initJoint(joint, a, b);
+  initJoint(joint, def, a, b);
   w.jointsOfBody[joint.bodyA].push_back(slot);
   w.jointsOfBody[joint.bodyB].push_back(slot);
   if (!def.name.empty()) w.jointByName[def.name] = slot;
@@ -319,7 +330,9 @@ bool World::destroyJoint(JointId id) {
     // The pair may collide again: let the broad phase report it anew.
     for (const int proxy : w.bodies.items[slot].proxies) w.markMoved(proxy);
   }
-  if (!joint.def.name.empty()) w.jointByName.erase(joint.def.name);
+  const std::string& name = w.jointDefs[id.index].name;
+  if (!name.empty()) w.jointByName.erase(name);
+  w.jointDefs[id.index] = JointDef();
   w.joints.release(id.index);
   return true;
 }
@@ -340,7 +353,7 @@ JointId World::findJoint(const std::string& name) const {
 }
 
 const Body& World::body(BodyId id) const { return impl_->bodies.items[id.index]; }
-const JointDef& World::jointDef(JointId id) const { return impl_->joints.items[id.index].def; }
+const JointDef& World::jointDef(JointId id) const { return impl_->jointDefs[id.index]; }
 
 JointState World::jointState(JointId id) const {
   const Joint& joint = impl_->joints.items[id.index];
@@ -421,9 +434,10 @@ bool World::setJointMotor(JointId id, bool enable, double speed, double maxForce
     return false;
   }
   Joint& joint = impl_->joints.items[id.index];
-  joint.def.enableMotor = enable;
-  joint.def.motorSpeed = speed;
-  joint.def.maxMotorTorque = maxForceOrTorque;
+  JointDef& def = impl_->jointDefs[id.index];
+  def.enableMotor = joint.def.enableMotor = enable;
+  def.motorSpeed = joint.def.motorSpeed = speed;
+  def.maxMotorTorque = joint.def.maxMotorTorque = maxForceOrTorque;
   impl_->wakeBody(impl_->bodies.items[joint.bodyA]);
   impl_->wakeBody(impl_->bodies.items[joint.bodyB]);
   return true;

@@ -3,15 +3,20 @@
 #pragma once
 
 #include "contact.hpp"
+#include "contact_bundles.hpp"
 #include "contact_solver.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
 #include "solver_body.hpp"
+#include "step_workers.hpp"
+#include "substep_bodies.hpp"
 
 #include <impulse2d/world.hpp>
 
+#include <functional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -20,6 +25,9 @@ namespace impulse2d {
 /// Fat boxes are this much larger than their shapes, so a body that moves a little does not touch
 /// the tree at all.
 constexpr double kAabbMargin = 0.1;
+/// Parallel stages take contacts, and bodies, in blocks of this many.
+constexpr int kContactsPerBlock = 256;
+constexpr int kBodiesPerBlock = 256;
 
 /// Slot storage: stable indices, a generation per slot to reject stale handles, and a free list
 /// so that create/destroy churn reuses memory instead of growing.
@@ -74,6 +82,7 @@ struct WorldImpl {
   WorldDef def;
   Slots<Body> bodies;
   Slots<Joint> joints;
+  std::vector<JointDef> jointDefs;  // by joint slot: as created (names), for World::jointDef
   std::vector<std::vector<int>> jointsOfBody;  // by body slot
   std::unordered_map<std::string, int> bodyByName;
   std::unordered_map<std::string, int> jointByName;
@@ -84,13 +93,25 @@ struct WorldImpl {
   std::vector<char> proxyMoved;  // by proxy id
 
   std::vector<Contact> contacts;                   // solved in this order
-  std::unordered_map<uint64_t, int> contactByKey;  // key -> index in `contacts`, always current
+  std::unordered_set<uint64_t> contactKeys;  // the keys of `contacts`: a pair is found once
   // Reused buffers of findNewContacts, so the step allocates nothing once warm.
   std::vector<std::pair<int, int>> newPairs;
   std::vector<Contact> newContacts;
 
-  SolverBodies solverBodies;  // stages 4-6 and 8 work on these, not on `bodies`
+  // The one-pass solvers (baumgarte, ngs) work on these, not on `bodies`.
+  SolverBodies solverBodies;
   ContactSolver contactSolver;
+  // The sub-stepping solvers (world_substeps.cpp) on these, on the step's threads.
+  SubstepBodies substepBodies;
+  ContactBundles contactBundles;
+  StepWorkers stepWorkers;
+  std::vector<std::pair<int, int>> activeJointBodies;  // by active joint: its bodies' slots
+  std::vector<Joint> solverJoints;  // this step's active joints, by colour (copies)
+  std::vector<int> jointStart;      // colour c's in solverJoints: [jointStart[c], [c + 1])
+  std::vector<char> workerJointsOk;    // the NGS pass's verdicts, by worker
+  std::vector<double> workerDeepest;
+  std::vector<uint8_t> contactFates;   // the narrow phase's verdict, by contact
+  std::vector<std::vector<std::pair<int, Aabb>>> refits;  // proxies that left their fat boxes
   // Reused buffers of the island pass (island_sleep.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
     int slot;
@@ -98,7 +119,6 @@ struct WorldImpl {
     double startAngle;
   };
   std::vector<FastBody> fastBodies;
-  std::vector<FastBody> stepStart;  // sub-stepping solvers: where moving bodies began the step
   std::vector<int> activeJoints;    // joints with an awake dynamic body, this step
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
   double time = 0.0;
@@ -108,6 +128,9 @@ struct WorldImpl {
   void createProxies(Body& body);
   void destroyProxies(Body& body);
   void markMoved(int proxy);
+  bool movedThisStep(int proxy) const {
+    return proxy < static_cast<int>(proxyMoved.size()) && proxyMoved[proxy];
+  }
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
   void updateProxies(Body& body, bool forced);
   void destroyContactsOf(int bodySlot);
@@ -117,11 +140,10 @@ struct WorldImpl {
     size_t write = 0;
     for (size_t read = 0; read < contacts.size(); ++read) {
       if (pred(contacts[read])) {
-        contactByKey.erase(contacts[read].key);
+        contactKeys.erase(contacts[read].key);
         continue;
       }
       if (write != read) contacts[write] = contacts[read];
-      contactByKey[contacts[write].key] = static_cast<int>(write);
       ++write;
     }
     contacts.resize(write);
@@ -133,10 +155,22 @@ struct WorldImpl {
   void updateBroadPhase();
   void findNewContacts();
   void updateContacts();
-  double speculativeMargin(const Body& a, const Body& b) const;
   void integrateVelocities(double dt);
   void solve(double dt);
   void solveSubsteps(double dt);
+  // The sub-stepping solvers' passes (world_substeps.cpp): an operation on one joint (with
+  // scalar views of its bodies) and one on a range of contact bundles, each told its worker.
+  using JointOp = std::function<void(Joint&, SolverBody&, SolverBody&, int worker)>;
+  using BundleOp =
+      std::function<void(const BundlePass&, int begin, int end, bool oneByOne, int worker)>;
+  /// Runs op on solverJoints[index] and writes back what it changed of its bodies (the poses
+  /// too when `pose`).
+  void onJoint(int index, int worker, const JointOp& op, bool pose);
+  /// One pass over every colour's joints and bundles, then the overflow's; either op may be
+  /// empty.
+  void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
+                  bool pose);
+  void correctSubstepPositions(const BundlePass& pass);
   /// Lists the joints of bodies the step moves, with their solver entries.
   void collectActiveJoints();
   /// Prepares the active joints for a pass of time step dt with the given feedback.

@@ -12,32 +12,71 @@ namespace impulse2d {
 void World::step() {
   WorldImpl& w = *impl_;
   const double dt = w.def.timeStep;
-  w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
-  w.findNewContacts();   // 2. newly overlapping pairs become arbiters
-  w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
-  w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
-  if (usesSubsteps(w.def.solver)) {
-    w.solveSubsteps(dt);  // 4-6 in sub-steps (world_substeps.cpp)
-  } else {
-    w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
-    w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
-    w.integratePositions(dt);   // 6. move with the solved velocities
-  }
-  w.solverBodies.storeMotion(w.bodies.items);
-  w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
-  w.correctPositions();   // 8. NGS solvers only: push remaining overlaps apart
-  w.updateSleep(dt);      // 9. islands still for long enough fall asleep
-  removeEscapedBodies();  // 10. bodies that left the world are removed; lost ones reported
-  w.clearForces();
+  w.stepWorkers.setThreads(w.def.threads);
+  w.stepWorkers.session([&] {  // the step's threads, for each stage that has parallel blocks
+    w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
+    w.findNewContacts();   // 2. newly overlapping pairs become arbiters
+    w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
+    if (usesSubsteps(w.def.solver)) {
+      w.solveSubsteps(dt);  // 4-6 in sub-steps, and 8 (world_substeps.cpp)
+    } else {
+      w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
+      w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
+      w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
+      w.integratePositions(dt);   // 6. move with the solved velocities
+      w.solverBodies.storeMotion(w.bodies.items);
+    }
+    w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
+    w.correctPositions();   // 8. ngs: push remaining overlaps apart
+    w.updateSleep(dt);      // 9. islands still for long enough fall asleep
+    removeEscapedBodies();  // 10. bodies that left the world are removed; lost ones reported
+    w.clearForces();
+  });
   w.time += dt;
   ++w.steps;
 }
 
+namespace {
+
+// Whether no point of the body has moved as far as the fat boxes' margin since they were placed:
+// at most the shift of its origin plus the chord its farthest point turned through,
+// reach * 2 sin(turn / 2) = reach * sqrt(2 - 2 cos(turn)).
+bool movedLessThanMargin(const Body& body) {
+  const double dx = body.xf.p.x() - body.proxyXf.p.x(), dy = body.xf.p.y() - body.proxyXf.p.y();
+  const double cosTurn = body.proxyXf.q.c * body.xf.q.c + body.proxyXf.q.s * body.xf.q.s;
+  const double reach = body.maxExtent + body.localCenter.norm();
+  const double chord = reach * std::sqrt(std::max(0.0, 2.0 - 2.0 * cosTurn));
+  return std::sqrt(dx * dx + dy * dy) + chord < 0.5 * kAabbMargin;
+}
+
+}  // namespace
+
 void WorldImpl::updateBroadPhase() {
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    Body& body = bodies.items[i];
-    if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
-    updateProxies(body, false);
+  // In parallel: the shapes of moving bodies that left their fat boxes (most move less than the
+  // margin and need nothing). Then in slot order, one thread: the tree moves them.
+  const int slots = static_cast<int>(bodies.items.size());
+  const int blocks = (slots + kBodiesPerBlock - 1) / kBodiesPerBlock;
+  refits.resize(static_cast<size_t>(blocks));
+  stepWorkers.stage(blocks, [&](int block, int) {
+    std::vector<std::pair<int, Aabb>>& out = refits[block];
+    out.clear();
+    for (int i = block * kBodiesPerBlock; i < std::min(slots, (block + 1) * kBodiesPerBlock); ++i) {
+      Body& body = bodies.items[i];
+      if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+      if (movedLessThanMargin(body)) continue;
+      const size_t before = out.size();
+      for (size_t k = 0; k < body.shapes.size(); ++k) {
+        const Aabb box = computeAabb(body.shapes[k], body.xf);
+        if (!tree.fatAabb(body.proxies[k]).contains(box)) out.emplace_back(body.proxies[k], box);
+      }
+      if (out.size() - before == body.shapes.size()) body.proxyXf = body.xf;  // all placed anew
+    }
+  });
+  for (const std::vector<std::pair<int, Aabb>>& block : refits) {
+    for (const auto& [proxy, box] : block) {
+      tree.moveProxy(proxy, box.inflated(kAabbMargin));
+      markMoved(proxy);
+    }
   }
 }
 
@@ -52,8 +91,7 @@ void WorldImpl::findNewContacts() {
       pairs.emplace_back(std::min(proxy, other), std::max(proxy, other));
     });
   }
-  for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
-  movedProxies.clear();
+  // proxyMoved stays set until the narrow phase has checked the contacts of the moved proxies.
 
   std::vector<Contact>& fresh = newContacts;
   fresh.clear();
@@ -66,71 +104,78 @@ void WorldImpl::findNewContacts() {
       std::swap(shapeA, shapeB);
     }
     const uint64_t key = contactKey(slotA, shapeA, slotB, shapeB);
-    if (contactByKey.count(key) || !shouldCollide(slotA, slotB)) continue;
+    if (contactKeys.count(key) || !shouldCollide(slotA, slotB)) continue;
     Contact contact;
     contact.key = key;
     contact.bodyA = slotA;
     contact.bodyB = slotB;
     contact.shapeA = shapeA;
     contact.shapeB = shapeB;
+    contact.proxyA = slotA == static_cast<int>(tree.userData(p) >> 8) ? p : q;
+    contact.proxyB = contact.proxyA == p ? q : p;
     const Shape& sa = bodies.items[slotA].shapes[shapeA];
     const Shape& sb = bodies.items[slotB].shapes[shapeB];
     contact.friction = mixFriction(sa.friction, sb.friction);
     contact.restitution = mixRestitution(sa.restitution, sb.restitution);
-    contactByKey.emplace(key, -1);
+    contactKeys.insert(key);
     fresh.push_back(contact);
   }
   // The tree's shape depends on history; sorting by key makes the solve order depend only on
   // which pairs exist.
   std::sort(fresh.begin(), fresh.end(),
             [](const Contact& x, const Contact& y) { return x.key < y.key; });
-  for (Contact& contact : fresh) {
-    contactByKey[contact.key] = static_cast<int>(contacts.size());
-    contacts.push_back(contact);
-  }
+  contacts.insert(contacts.end(), fresh.begin(), fresh.end());
 }
 
 void WorldImpl::updateContacts() {
+  // In parallel: each contact's new manifold, or its mark to go (its fat boxes parted). Which
+  // bodies move is read as the step found them, so the result does not depend on the order.
+  enum : uint8_t { kKeep = 0, kDrop = 1, kWakeA = 2, kWakeB = 4 };
+  std::vector<uint8_t>& contactFate = contactFates;
+  contactFate.resize(contacts.size());
+  const int blocks = static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
+  stepWorkers.stage(blocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
+    for (size_t i = first; i < last; ++i) {
+      Contact& contact = contacts[i];
+      const Body& a = bodies.items[contact.bodyA];
+      const Body& b = bodies.items[contact.bodyB];
+      uint8_t fate = kKeep;
+      // Fat boxes can only have parted if one of them moved this step.
+      const bool moved = movedThisStep(contact.proxyA) || movedThisStep(contact.proxyB);
+      if (moved && !tree.fatAabb(contact.proxyA).overlaps(tree.fatAabb(contact.proxyB))) {
+        fate = kDrop;
+      } else if (isMoving(a) || isMoving(b)) {
+        // Two bodies that cannot move relative to each other keep last step's manifold.
+        updateContact(contact, a, b, def.speculativeDistance, def.timeStep, def.warmStarting);
+        // Something moving now touches a sleeper: it wakes before the solver runs.
+        if (contact.manifold.pointCount > 0) {
+          if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) fate |= kWakeB;
+          if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake) fate |= kWakeA;
+        }
+      }
+      contactFate[i] = fate;
+    }
+  });
+  // In order: drop what went, wake what was touched.
   size_t write = 0;
   for (size_t read = 0; read < contacts.size(); ++read) {
-    Contact& contact = contacts[read];
-    const Body& a = bodies.items[contact.bodyA];
-    const Body& b = bodies.items[contact.bodyB];
-    const int proxyA = a.proxies[contact.shapeA], proxyB = b.proxies[contact.shapeB];
-    if (!tree.fatAabb(proxyA).overlaps(tree.fatAabb(proxyB))) {
-      contactByKey.erase(contact.key);
+    const uint8_t fate = contactFate[read];
+    if (fate & kDrop) {
+      contactKeys.erase(contacts[read].key);
       continue;
     }
-    // Two bodies that cannot move relative to each other keep last step's manifold.
-    if (isMoving(a) || isMoving(b)) {
-      updateContact(contact, a, b, speculativeMargin(a, b), def.warmStarting);
-      // Something moving now touches a sleeper: wake it before the solver runs.
-      if (contact.manifold.pointCount > 0) {
-        if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake)
-          wakeBody(bodies.items[contact.bodyB]);
-        if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake)
-          wakeBody(bodies.items[contact.bodyA]);
-      }
-    }
-    // The map already holds every kept contact's index; only those that slid down need a write.
-    if (write != read) {
-      contacts[write] = contact;
-      contactByKey[contacts[write].key] = static_cast<int>(write);
-    }
+    if (fate & kWakeA) wakeBody(bodies.items[contacts[read].bodyA]);
+    if (fate & kWakeB) wakeBody(bodies.items[contacts[read].bodyB]);
+    if (write != read) contacts[write] = contacts[read];
     ++write;
   }
   contacts.resize(write);
+  for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
+  movedProxies.clear();
 }
 
-// Points farther apart than this are left out of the manifold. Beyond the fixed margin, as far as
-// the pair can close in one step at its current speeds, so a body fast enough to cross the
-// margin in a step is caught at the surface instead of a step's travel inside it.
-double WorldImpl::speculativeMargin(const Body& a, const Body& b) const {
-  const double closing = (b.linearVelocity - a.linearVelocity).norm() +
-                         std::abs(a.angularVelocity) * a.maxExtent +
-                         std::abs(b.angularVelocity) * b.maxExtent;
-  return def.speculativeDistance + def.timeStep * closing;
-}
 
 void WorldImpl::integrateVelocities(double dt) {
   // Faster than this, a body crosses the whole world within the step: it cannot be simulated.
@@ -237,9 +282,7 @@ void WorldImpl::integratePositions(double dt) {
 }
 
 void WorldImpl::correctPositions() {
-  if (def.solver != SolverType::NonlinearGaussSeidel && def.solver != SolverType::SubstepNgs) {
-    return;
-  }
+  if (def.solver != SolverType::NonlinearGaussSeidel) return;
   solverBodies.loadPoses(bodies.items);  // continuous collision may have moved some
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;

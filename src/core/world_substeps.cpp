@@ -1,16 +1,23 @@
-// Stages 4-6 of World::step for the sub-stepping solvers: n = velocity_iterations sub-steps of
-// h = dt / n. The narrow phase ran once for the whole step; each sub-step then does
+// Stages 4-6 and 8 of World::step for the sub-stepping solvers: n = velocity_iterations sub-steps
+// of h = dt / n. The narrow phase ran once for the whole step; then
 //
-//   integrate velocities (h) -> warm start -> solve once -> move (h) -> relax: solve once more
+//   gather the moving bodies, colour the joints and contacts, fill the contact bundles
+//   n times: integrate velocities (h) -> warm start -> solve once -> move (h) -> relax: solve
+//            once more
+//   restitution, store the impulses; SubstepNgs: NGS position passes
 //
 // where the first solve of the soft step has a soft position bias and every other is rigid
-// without bias, and restitution is applied once after the last sub-step. A load crosses one
-// contact or joint per iteration, and gravity adds only g h per sub-step, so small sub-steps carry
-// it through a tall pile or a long chain where one big step with the same number of iterations
-// cannot: the pile sags and rebounds instead. SubstepNgs adds no position bias at all (no energy,
-// no momentum) and leaves the drift to the NGS position pass after the step; SoftStep pushes
-// overlaps and joint gaps apart as stiff, heavily damped springs, and its relax pass takes back the
-// velocity that push added.
+// without bias. A load crosses one contact or joint per iteration, and gravity adds only g h per
+// sub-step, so small sub-steps carry it through a tall pile or a long chain where one big step
+// with the same number of iterations cannot: the pile sags and rebounds instead. SubstepNgs adds
+// no position bias at all (no energy, no momentum) and leaves the drift to the NGS passes;
+// SoftStep pushes overlaps and joint gaps apart as stiff, heavily damped springs, and its relax
+// pass takes back the velocity that push added.
+//
+// Each pass goes over the joints a colour at a time (one by one, on scalar views of their bodies),
+// then over the contact bundles a colour at a time (the SIMD kernels), each colour in blocks
+// shared among the step's threads (step_workers.hpp); each overflow, one after the other, on the
+// stepping thread.
 #include "world_impl.hpp"
 
 #include <algorithm>
@@ -21,66 +28,219 @@ namespace {
 
 // Joint springs stiffer than this fraction of the sub-step rate outrun their own integration.
 constexpr double kMaxJointHertzPerSubstepRate = 0.25;
+// Contact springs stiffer than this fraction of the sub-step rate were measured to shake the
+// 5050-box pyramid apart (0.19 sways, 0.25 collapses; 0.15 holds it within 3 cm).
+constexpr double kMaxContactHertzPerSubstepRate = 0.15;
+// The largest position correction one NGS pass applies, so deep overlaps (spawned inside each
+// other) separate over several steps instead of exploding apart.
+constexpr double kMaxLinearCorrection = 0.2;
+// Work shared among threads comes in blocks of this many bundles or joints: big enough that
+// claiming a block costs little, small enough that the threads finish a colour together.
+constexpr int kBundlesPerBlock = 4;
+constexpr int kJointsPerBlock = 32;
+
+int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
+
 
 }  // namespace
 
-void WorldImpl::moveBodies(double h) {
-  solverBodies.holdKinematicVelocities();
-  for (int e = 0; e < solverBodies.movingCount(); ++e) {
-    SolverBody& body = solverBodies[e];
-    body.center += h * body.linearVelocity;
-    turnBy(body, h * body.angularVelocity);
+void WorldImpl::onJoint(int index, int worker, const JointOp& op, bool pose) {
+  Joint& joint = solverJoints[index];
+  SolverBody a = substepBodies.view(joint.bodyA), b = substepBodies.view(joint.bodyB);
+  op(joint, a, b, worker);
+  substepBodies.store(joint.bodyA, a, pose);
+  substepBodies.store(joint.bodyB, b, pose);
+}
+
+void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
+                           const BundlePass& pass, bool pose) {
+  SubstepBodies& sb = substepBodies;
+  const int colors = contactBundles.colorCount();
+  // The joints first, colour after colour and then their overflow, and the contacts after them:
+  // the contacts' last word keeps jointed bodies out of the ground. Interleaving a colour's
+  // joints with its contacts instead let ragdolls landing at 28 m/s (v3_rain) open their joints
+  // by up to 38 cm and sink 12 cm, where this order keeps them within a few centimetres.
+  if (jointOp) {
+    for (int color = 0; color < colors; ++color) {
+      const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
+      stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock), [&](int block, int worker) {
+        const int from = firstJoint + block * kJointsPerBlock;
+        for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
+          onJoint(k, worker, jointOp, pose);
+        }
+      });
+    }
+    for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) onJoint(k, 0, jointOp, pose);
   }
+  if (!bundleOp) return;
+  auto sink = [&](int worker) {
+    BundlePass mine = pass;
+    mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(worker) * kStateDoubles);
+    return mine;
+  };
+  for (int color = 0; color < colors; ++color) {
+    const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
+    stepWorkers.stage(blocksOf(end - first, kBundlesPerBlock), [&](int block, int worker) {
+      const int begin = first + block * kBundlesPerBlock;
+      bundleOp(sink(worker), begin, std::min(end, begin + kBundlesPerBlock), false, worker);
+    });
+  }
+  // The overflow: one after the other, on this thread.
+  bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);
 }
 
 void WorldImpl::solveSubsteps(double dt) {
   const int substeps = std::max(1, def.velocityIterations);
   const double h = dt / substeps;
   const bool soft = def.solver == SolverType::SoftStep;
+  SubstepBodies& sb = substepBodies;
+  sb.gather(bodies.items, bodies.alive, def.gravity, h, substeps, stepWorkers);
+  overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
 
-  stepStart.clear();
-  for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
-    stepStart.push_back({solverBodies.slotOf(e), solverBodies[e].center, solverBodies[e].angle});
+  activeJoints.clear();
+  activeJointBodies.clear();
+  for (size_t j = 0; j < joints.items.size(); ++j) {
+    if (!joints.alive[j]) continue;
+    Joint& joint = joints.items[j];
+    const bool moves = sb.isDynamicEntry(sb.entryOf(joint.bodyA)) ||
+                       sb.isDynamicEntry(sb.entryOf(joint.bodyB));
+    if (!moves) continue;
+    activeJoints.push_back(static_cast<int>(j));
+    activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
+    if (!def.warmStarting) {
+      joint.pointImpulse.setZero();
+      joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
+    }
+  }
+  contactBundles.assign(contacts, activeJoints, activeJointBodies, sb);
+  // The joints, colour after colour and the overflow last, copied side by side: a colour's
+  // joints are every few in slot order, and a pass over them there waited on memory at each.
+  solverJoints.clear();
+  jointStart.assign(1, 0);
+  for (int color = 0; color <= contactBundles.colorCount(); ++color) {
+    for (const int slot : contactBundles.jointsOf(color)) solverJoints.push_back(joints.items[slot]);
+    jointStart.push_back(static_cast<int>(solverJoints.size()));
   }
 
-  collectActiveJoints();
-  contactSolver.prepare(contacts, solverBodies, def, dt);
-  contactSolver.prepareSubsteps(def, substeps, h);
+  BundlePass pass = contactBundles.pass(sb);
+  pass.h = h;
+  pass.inverseH = 1.0 / h;
+  pass.maxPushVelocity = def.maxPushVelocity;
+  const double contactHertz = std::min(def.contactHertz, kMaxContactHertzPerSubstepRate / h);
+  pass.dynamicSoft = springFeedback(contactHertz, def.contactDampingRatio, h);
+  pass.staticSoft = springFeedback(2.0 * contactHertz, def.contactDampingRatio, h);
+  pass.restitutionThreshold = def.restitutionThreshold;
+  pass.baumgarte = def.baumgarte;
+  pass.linearSlop = def.linearSlop;
+  pass.maxLinearCorrection = kMaxLinearCorrection;
+
   const Feedback rigid;  // no bias
   const Feedback jointSpring = springFeedback(
       std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h), def.jointDampingRatio, h);
+  const int bodyBlocks = blocksOf(sb.movingCount(), kBodiesPerBlock);
+  const int dynamicBlocks = blocksOf(sb.dynamicCount(), kBodiesPerBlock);
+  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
 
+  // Joints prepare their rows at the bodies' poses when a pass first reaches them.
+  const Feedback firstFeedback = soft ? jointSpring : rigid;
+  const JointOp prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
+    prepareJoint(j, a, b, def, firstFeedback, h);
+    warmStartJoint(j, a, b);
+  };
+  const JointOp solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
+    solveJointVelocity(j, a, b, h);
+  };
+  const JointOp prepareAndRelax = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
+    prepareJoint(j, a, b, def, rigid, h);
+    solveJointVelocity(j, a, b, h);
+  };
+  auto kernel = [](void (*run)(const BundlePass&, int, int, bool)) -> BundleOp {
+    return [run](const BundlePass& p, int begin, int end, bool oneByOne, int) {
+      run(p, begin, end, oneByOne);
+    };
+  };
+
+  stepWorkers.stage(contactBlocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
+                        bodies.items, substeps, soft);
+  });
+  const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
+  stepWorkers.stage(fillBlocks, [&](int block, int) {
+    const int begin = block * 8 * kBundlesPerBlock;
+    contactBundles.finishFill(begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock),
+                              sb);
+  });
   for (int substep = 0; substep < substeps; ++substep) {
-    integrateVelocities(h);
-    prepareJoints(soft ? jointSpring : rigid, h);
-    warmStartJoints();
-    contactSolver.warmStart();
-    solveJointVelocities(h);
-    contactSolver.solveSubstep(h, soft, false, def.maxPushVelocity);
+    stepWorkers.stage(dynamicBlocks, [&](int block, int) {
+      sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
+    });
+    overColors(prepareAndWarmStart, kernel(warmStartBundles), pass, false);
+    pass.useBias = soft;
+    pass.relax = false;
+    overColors(solveJoints, kernel(solveBundles), pass, false);
 
-    moveBodies(h);
+    stepWorkers.stage(bodyBlocks, [&](int block, int) {
+      sb.integratePositions(block * kBodiesPerBlock,
+                            std::min(sb.movingCount(), (block + 1) * kBodiesPerBlock), h);
+    });
 
     // Relax: a second iteration at the new poses. For the soft step it takes back the push;
     // for both it is what keeps warm-started sub-steps stable (with one iteration per sub-step
     // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
-    prepareJoints(rigid, h);
-    solveJointVelocities(h);
-    contactSolver.solveSubstep(h, false, true, def.maxPushVelocity);
+    pass.useBias = false;
+    pass.relax = true;
+    overColors(prepareAndRelax, kernel(solveBundles), pass, false);
   }
-  contactSolver.applyRestitution(def.restitutionThreshold);
-  contactSolver.storeImpulses();
+  pass.relax = false;
+  overColors(nullptr, kernel(restituteBundles), pass, false);
+  stepWorkers.stage(contactBlocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
+  });
+  if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
+  for (const Joint& joint : solverJoints) joints.items[joint.id.index] = joint;
+  stepWorkers.stage(bodyBlocks, [&](int block, int) {
+    sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
+  });
 
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.
   fastBodies.clear();
-  for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
-    const FastBody& start = stepStart[e];
-    const SolverBody& body = solverBodies[e];
-    const Body& shape = bodies.items[start.slot];
-    const double reach = (body.center - start.startCenter).norm() +
-                         std::abs(body.angle - start.startAngle) * shape.maxExtent;
-    if (reach > std::max(def.speculativeDistance, 0.25 * shape.minExtent)) {
-      fastBodies.push_back(start);
+  for (int e = 0; e < sb.dynamicCount(); ++e) {
+    const BodyState& s = sb.state(e);
+    const BodyStart& start = sb.start(e);
+    const Body& body = bodies.items[start.slot];
+    const double reach = std::sqrt(s.dx * s.dx + s.dy * s.dy) + std::abs(s.turned) * body.maxExtent;
+    if (reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
+      fastBodies.push_back({start.slot, sb.sim(e).center0, start.angle0});
     }
+  }
+}
+
+// NGS passes after the sub-steps: push what still overlaps apart by moving the bodies (no
+// velocity, so no energy added), until every joint is within its slop and every overlap within
+// 3 slops. Each thread keeps its own verdicts: AND and min do not depend on the order.
+void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
+  const size_t workers = static_cast<size_t>(stepWorkers.threads());
+  for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
+    workerJointsOk.assign(workers, 1);
+    workerDeepest.assign(workers, 0.0);
+    const JointOp jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
+      if (!solveJointPosition(j, a, b, def)) workerJointsOk[static_cast<size_t>(worker)] = 0;
+    };
+    const BundleOp contactPositions = [&](const BundlePass& p, int begin, int end, bool oneByOne,
+                                          int worker) {
+      double& deepest = workerDeepest[static_cast<size_t>(worker)];
+      deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
+    };
+    overColors(jointPositions, contactPositions, pass, true);
+    bool jointsOk = true;
+    double deepest = 0.0;
+    for (size_t w = 0; w < workers; ++w) {
+      jointsOk = jointsOk && workerJointsOk[w];
+      deepest = std::min(deepest, workerDeepest[w]);
+    }
+    if (jointsOk && deepest >= -3.0 * def.linearSlop) break;
   }
 }
 

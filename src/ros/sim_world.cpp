@@ -102,6 +102,7 @@ void SimWorld::restoreStart() {
       impulse2d::addScene(scene, *world_, &error);
     }
   }
+  if (threads_ > 0) world_->settings().threads = threads_;
   respawnStartUrdfs();
   if (startDevicesAttached_) {
     std::string error;
@@ -110,6 +111,13 @@ void SimWorld::restoreStart() {
 }
 
 void SimWorld::reset() { restoreStart(); }
+
+void SimWorld::setThreads(int threads) {
+  threads_ = threads;
+  if (threads_ > 0) world_->settings().threads = threads_;
+}
+
+int SimWorld::threads() const { return world_->settings().threads; }
 
 bool SimWorld::addScene(const std::string& yamlText, std::string* error) {
   Scene scene;

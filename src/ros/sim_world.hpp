@@ -188,6 +188,10 @@ class SimWorld {
   /// Back to the start scene: bodies, joints and settings; pending wrenches are dropped.
   /// The step count (simulated time) keeps running, so stamps never go backwards.
   void reset();
+  /// Steps on this many threads from now on, whatever the scenes say (0: as the start scene
+  /// says, 1 by default); kept across reset().
+  void setThreads(int threads);
+  int threads() const;
   /// Adds the scene's bodies, joints and devices (all or nothing); its `world:` settings are not
   /// applied.
   bool addScene(const std::string& yamlText, std::string* error);
@@ -300,6 +304,7 @@ class SimWorld {
 
   std::unique_ptr<World> world_;
   std::string startYaml_;  ///< empty when the start scene was missing or bad
+  int threads_ = 0;        ///< setThreads(); 0: the start scene's world.threads
   std::string frameId_ = "world";
   std::string plane_ = "xz";
   std::vector<Wrench> wrenches_;

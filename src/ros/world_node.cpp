@@ -5,6 +5,8 @@
 #include "conversions.hpp"
 #include "scene_param.hpp"
 
+#include <impulse2d/limits.hpp>
+
 #include <impulse2d/ContactArray.h>
 #include <rosgraph_msgs/Clock.h>
 #include <tf2_msgs/TFMessage.h>
@@ -51,8 +53,11 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, cons
   statsStart_ = ros::WallTime::now();
   advertise();
   if (publishClock_) publishClock(sim_.simTimeNs());
-  ROS_INFO("[%s] %zu bodies, time_step %g s, rate %g steps/s (0: as fast as possible), %s",
-           name_.c_str(), sim_.bodyCount(), sim_.timeStep(), rate_, paused_ ? "paused" : "running");
+  ROS_INFO(
+      "[%s] %zu bodies, time_step %g s, rate %g steps/s (0: as fast as possible), %d thread%s, "
+      "%s",
+      name_.c_str(), sim_.bodyCount(), sim_.timeStep(), rate_, sim_.threads(),
+      sim_.threads() == 1 ? "" : "s", paused_ ? "paused" : "running");
 
   // From here on callbacks may run on other threads, and they take the lock.
   advertiseServices();
@@ -112,6 +117,15 @@ void WorldNode::readParams() {
   }
   pnh_.param("publish_clock", publishClock_, false);
   pnh_.param("paused", paused_, false);
+  int threads = 0;
+  if (pnh_.getParam("threads", threads)) {
+    if (threads >= 1 && threads <= kMaxThreads) {
+      sim_.setThreads(threads);
+    } else {
+      ROS_WARN("[%s] ~threads must be in [1, %d]; using the scene's %d", name_.c_str(),
+               kMaxThreads, sim_.threads());
+    }
+  }
 }
 
 void WorldNode::advertise() {

@@ -166,6 +166,7 @@ void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("bodies removed", removed);
   status.add("bodies lost for good", lost);
   status.add("requested rate (steps/s)", rate_);
+  status.add("threads", sim_.threads());
   statsStart_ = now;
   statsSimStartNs_ = sim_.simTimeNs();
   statsSteps_ = 0;

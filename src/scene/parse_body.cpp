@@ -8,10 +8,19 @@ namespace impulse2d {
 namespace scene_detail {
 namespace {
 
+CollisionFilter parseFilter(const YAML::Node& node) {
+  const Fields f(node, "a collision filter", {"category", "mask", "group"});
+  CollisionFilter filter;
+  filter.categoryBits = f.bits("category", filter.categoryBits);
+  filter.maskBits = f.bits("mask", filter.maskBits);
+  filter.groupIndex = f.integer("group", filter.groupIndex);
+  return filter;
+}
+
 ShapeDef parseShape(const YAML::Node& node) {
   const Fields f(node, "a shape",
                  {"type", "size", "radius", "vertices", "offset", "angle", "density", "friction",
-                  "restitution"});
+                  "restitution", "filter"});
   ShapeDef def;
   const std::string type = f.string("type", "box");
   std::string geometryKey;  // the one key that gives this type's geometry
@@ -41,6 +50,13 @@ ShapeDef parseShape(const YAML::Node& node) {
   def.density = f.number("density", def.density);
   def.friction = f.number("friction", def.friction);
   def.restitution = f.number("restitution", def.restitution);
+  if (f.has("filter")) {
+    try {
+      def.filter = parseFilter(f.node("filter"));
+    } catch (const SceneError& e) {
+      throw e.within("filter");
+    }
+  }
   return def;
 }
 
@@ -56,7 +72,7 @@ BodyType parseBodyType(const std::string& type) {
 BodyDef parseBody(const YAML::Node& node) {
   const Fields f(node, "a body",
                  {"name", "type", "position", "angle", "linear_velocity", "angular_velocity",
-                  "linear_damping", "angular_damping", "bullet", "mass", "shapes"});
+                  "linear_damping", "angular_damping", "bullet", "awake", "mass", "shapes"});
   BodyDef def;
   def.name = f.name("name");
   def.type = parseBodyType(f.string("type", "dynamic"));
@@ -67,6 +83,7 @@ BodyDef parseBody(const YAML::Node& node) {
   def.linearDamping = f.number("linear_damping", def.linearDamping);
   def.angularDamping = f.number("angular_damping", def.angularDamping);
   def.bullet = f.boolean("bullet", def.bullet);
+  def.awake = f.boolean("awake", def.awake);
   def.mass = f.number("mass", def.mass);
   if (f.has("shapes")) {
     const YAML::Node& shapes = f.node("shapes");

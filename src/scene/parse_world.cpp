@@ -15,6 +15,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
                   "plane",
                   "frame_id",
                   "solver",
+                  "threads",
                   "baumgarte",
                   "linear_slop",
                   "speculative_distance",
@@ -41,6 +42,7 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
       throw SceneError("solver", "must be " + solverNameList() + ", not " + quoted(solver));
     }
   }
+  w.threads = f.integer("threads", w.threads);
   w.baumgarte = f.number("baumgarte", w.baumgarte);
   w.linearSlop = f.number("linear_slop", w.linearSlop);
   w.speculativeDistance = f.number("speculative_distance", w.speculativeDistance);

@@ -69,6 +69,23 @@ bool toInteger(const YAML::Node& node, int* out) {
   return true;
 }
 
+// Decimal or 0x-prefixed hexadecimal, 0 .. 2^64 - 1 (collision filter bits).
+bool toBits(const YAML::Node& node, uint64_t* out) {
+  if (!node.IsScalar()) return false;
+  const std::string& s = node.Scalar();
+  const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
+  const size_t start = hex ? 2 : 0;
+  if (s.size() == start || s.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789",
+                                               start) != std::string::npos) {
+    return false;
+  }
+  errno = 0;
+  const unsigned long long v = std::strtoull(s.c_str() + start, nullptr, hex ? 16 : 10);
+  if (errno == ERANGE) return false;
+  *out = static_cast<uint64_t>(v);
+  return true;
+}
+
 }  // namespace
 
 bool toNumber(const YAML::Node& node, double* out) {
@@ -166,6 +183,16 @@ int Fields::integer(const char* key, int fallback) const {
   if (n == nullptr) return fallback;
   int v = 0;
   if (!toInteger(*n, &v)) throw SceneError(key, "must be an integer");
+  return v;
+}
+
+uint64_t Fields::bits(const char* key, uint64_t fallback) const {
+  const YAML::Node* n = find(key);
+  if (n == nullptr) return fallback;
+  uint64_t v = 0;
+  if (!toBits(*n, &v)) {
+    throw SceneError(key, "must be an unsigned integer below 2^64 (decimal or 0x hexadecimal)");
+  }
   return v;
 }
 

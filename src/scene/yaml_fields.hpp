@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -47,6 +48,8 @@ class Fields {
   // Each returns `fallback` when the key is absent and throws when it has the wrong type.
   double number(const char* key, double fallback) const;
   int integer(const char* key, int fallback) const;
+  /// A bit set: decimal or 0x-prefixed hexadecimal, at most 64 bits.
+  uint64_t bits(const char* key, uint64_t fallback) const;
   bool boolean(const char* key, bool fallback) const;
   std::string string(const char* key, const std::string& fallback) const;
   Vec2 vec2(const char* key, const Vec2& fallback) const;

@@ -17,8 +17,8 @@ namespace sim {
 const char* const kUsage =
     "usage: impulse2d_sim SCENE.yaml [--steps N | --duration SECONDS] [--time-step DT]\n"
     "                     [--velocity-iterations K] [--position-iterations K]\n"
-    "                     [--solver baumgarte|ngs|soft|substep] [--csv FILE] [--contacts FILE]\n"
-    "                     [--every K] [--hash]\n"
+    "                     [--solver baumgarte|ngs|soft|substep] [--threads N] [--csv FILE]\n"
+    "                     [--contacts FILE] [--every K] [--hash]\n"
     "\n"
     "Runs a scene file (the YAML schema of the impulse2d README) headless, without ROS.\n"
     "\n"
@@ -28,6 +28,7 @@ const char* const kUsage =
     "  --velocity-iterations K  override world.velocity_iterations (1 to 1000)\n"
     "  --position-iterations K  override world.position_iterations (0 to 1000)\n"
     "  --solver NAME            override world.solver: baumgarte, ngs, soft or substep\n"
+    "  --threads N              override world.threads (1 to 256; the same result for any N)\n"
     "  --csv FILE               write step,time,body,x,y,angle,vx,vy,omega: one row per\n"
     "                           dynamic or kinematic body per written step; step 0 is the\n"
     "                           initial state\n"
@@ -123,6 +124,10 @@ const std::map<std::string, Setter>& setters() {
          o->solverGiven = true;
          return "";
        }},
+      {"--threads",
+       [](const std::string& v, Options* o) {
+         return setIterations(v, &o->threads, &o->threadsGiven, &WorldDef::threads);
+       }},
       {"--csv",
        [](const std::string& v, Options* o) -> std::string {
          if (v.empty()) return "needs a file name";
@@ -216,6 +221,7 @@ WorldDef applyOverrides(const Options& options, WorldDef settings) {
   if (options.velocityIterationsGiven) settings.velocityIterations = options.velocityIterations;
   if (options.positionIterationsGiven) settings.positionIterations = options.positionIterations;
   if (options.solverGiven) settings.solver = options.solver;
+  if (options.threadsGiven) settings.threads = options.threads;
   return settings;
 }
 

@@ -20,6 +20,8 @@ struct Options {
   int velocityIterations = 0;
   bool positionIterationsGiven = false;
   int positionIterations = 0;
+  bool threadsGiven = false;
+  int threads = 1;
   bool solverGiven = false;
   SolverType solver = SolverType::Baumgarte;
   std::string csvPath;       ///< empty: none

@@ -154,11 +154,6 @@ constexpr double kMomentumTolerance = 1e-12;
 // 2 x 3 m/s, above the 1 m/s restitution threshold, with restitution <= 0.5.)
 constexpr double kEnergyTolerance = 1e-9;
 
-// Sub-stepping solvers keep each contact's lever arms from the start of the step while the bodies
-// move through the sub-steps, so an impulse pair is applied at points up to one step's travel
-// apart: angular momentum drifts by O(dt) of the collision impulses (1.6e-3 relative measured).
-constexpr double kSubstepAngularTolerance = 1e-2;
-
 void runClosedSystem(const WorldDef& def, unsigned seed, bool checkAngular) {
   std::mt19937 rng(seed);
   World world(def);
@@ -181,9 +176,7 @@ void runClosedSystem(const WorldDef& def, unsigned seed, bool checkAngular) {
   EXPECT_GT(contactsSeen, 20u) << "the bodies must actually collide";
   EXPECT_LE(worstLinear, kMomentumTolerance) << "seed " << seed;
   if (checkAngular) {
-    EXPECT_LE(worstAngular,
-              usesSubsteps(def.solver) ? kSubstepAngularTolerance : kMomentumTolerance)
-        << "seed " << seed;
+    EXPECT_LE(worstAngular, kMomentumTolerance) << "seed " << seed;
   }
   EXPECT_LE(energyMax, energy0 * (1.0 + kEnergyTolerance)) << "seed " << seed;
   std::printf(

@@ -40,7 +40,8 @@ bodies:
     type: static
     position: [0.0, -0.5]
     shapes:
-      - {type: box, size: [20.0, 1.0], friction: 0.9}
+      - {type: box, size: [20.0, 1.0], friction: 0.9,
+         filter: {category: 0x8000000000000000, mask: 6, group: -3}}
   - name: robot/base
     type: kinematic
     position: [1.0, 2.0]
@@ -50,6 +51,7 @@ bodies:
     linear_damping: 0.1
     angular_damping: 0.2
     bullet: true
+    awake: false
     mass: 2.0
     shapes:
       - {type: circle, radius: 0.3, offset: [0.1, 0.2], density: 3.0, restitution: 0.5}
@@ -108,6 +110,9 @@ TEST(SceneParse, ReadsEveryKey) {
   EXPECT_EQ(s.bodies[0].type, BodyType::Static);
   EXPECT_EQ(s.bodies[0].shapes[0].size, Vec2(20.0, 1.0));
   EXPECT_EQ(s.bodies[0].shapes[0].friction, 0.9);
+  EXPECT_EQ(s.bodies[0].shapes[0].filter.categoryBits, uint64_t(1) << 63);
+  EXPECT_EQ(s.bodies[0].shapes[0].filter.maskBits, 6u);
+  EXPECT_EQ(s.bodies[0].shapes[0].filter.groupIndex, -3);
 
   const BodyDef& b = s.bodies[1];
   EXPECT_EQ(b.name, "robot/base");
@@ -119,6 +124,7 @@ TEST(SceneParse, ReadsEveryKey) {
   EXPECT_EQ(b.linearDamping, 0.1);
   EXPECT_EQ(b.angularDamping, 0.2);
   EXPECT_TRUE(b.bullet);
+  EXPECT_FALSE(b.awake);
   EXPECT_EQ(b.mass, 2.0);
   ASSERT_EQ(b.shapes.size(), 2u);
   EXPECT_EQ(b.shapes[0].kind, ShapeKind::Circle);
@@ -201,6 +207,7 @@ TEST(SceneParse, LeftOutKeysTakeTheDefinitionsDefaults) {
   EXPECT_EQ(link.linearDamping, body.linearDamping);
   EXPECT_EQ(link.angularDamping, body.angularDamping);
   EXPECT_EQ(link.bullet, body.bullet);
+  EXPECT_EQ(link.awake, body.awake);
   EXPECT_EQ(link.mass, body.mass);
   const ShapeDef shape;
   EXPECT_EQ(link.shapes[0].kind, ShapeKind::Box);
@@ -210,6 +217,9 @@ TEST(SceneParse, LeftOutKeysTakeTheDefinitionsDefaults) {
   EXPECT_EQ(link.shapes[0].density, shape.density);
   EXPECT_EQ(link.shapes[0].friction, shape.friction);
   EXPECT_EQ(link.shapes[0].restitution, shape.restitution);
+  EXPECT_EQ(link.shapes[0].filter.categoryBits, shape.filter.categoryBits);
+  EXPECT_EQ(link.shapes[0].filter.maskBits, shape.filter.maskBits);
+  EXPECT_EQ(link.shapes[0].filter.groupIndex, shape.filter.groupIndex);
 
   const SceneJoint& hinge = s.joints[4];
   const JointDef joint;

@@ -106,5 +106,40 @@ TEST(Sleep, SwitchingSleepOffWakesSleepersAndTheyStayAwake) {
   EXPECT_FALSE(world.body(top).awake);
 }
 
+BodyId addSleepingBox(World& world, const std::string& name, const Vec2& position) {
+  BodyDef def;
+  def.name = name;
+  def.position = position;
+  def.awake = false;
+  def.shapes.push_back(ShapeDef());
+  return world.createBody(def);
+}
+
+// A body created asleep hangs where it was made (as a settled body would) until something
+// touches it; then it falls like any other.
+TEST(Sleep, ABodyCreatedAsleepWaitsForATouch) {
+  World world;
+  test::addGround(world);
+  const BodyId sleeper = addSleepingBox(world, "sleeper", Vec2(0.0, 3.0));
+  const BodyId faller = addBox(world, "faller", Vec2(5.0, 3.0), 1, 1, BodyType::Dynamic);
+  ASSERT_FALSE(world.body(sleeper).awake);
+  stepSeconds(world, 0.3);
+  EXPECT_EQ(world.body(sleeper).center, Vec2(0.0, 3.0)) << "not even gravity moves it";
+  EXPECT_LT(world.body(faller).center.y(), 3.0 - 0.4) << "the same box created awake falls";
+  addCircle(world, "ball", Vec2(0.0, 4.0), 0.4, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  EXPECT_NEAR(world.body(sleeper).center.y(), 0.5, 0.01) << "woken by the ball, it fell";
+}
+
+TEST(Sleep, AWorldThatDoesNotSleepCreatesEveryBodyAwake) {
+  WorldDef def;
+  def.enableSleep = false;
+  World world(def);
+  const BodyId box = addSleepingBox(world, "box", Vec2(0.0, 3.0));
+  EXPECT_TRUE(world.body(box).awake);
+  world.step();
+  EXPECT_LT(world.body(box).center.y(), 3.0);
+}
+
 }  // namespace
 }  // namespace impulse2d

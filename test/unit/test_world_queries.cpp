@@ -76,6 +76,29 @@ TEST(WorldRayCast, EqualFractionsGoToTheLowerBody) {
   EXPECT_NEAR(hit.fraction, 0.4, kExact);
 }
 
+// A ray that starts inside two overlapping shapes hits both at fraction 0: the lower body wins,
+// as for any tie, whichever the tree reaches first (a hit at 0 once ended the tree's walk).
+TEST(WorldRayCast, AStartInsideTwoShapesGoesToTheLowerBody) {
+  for (const bool lowerOnTheLeft : {true, false}) {
+    World world;
+    const double side = lowerOnTheLeft ? -1.0 : 1.0;
+    const BodyId lower = addBox(world, "lower", Vec2(0.4 * side, 0.0), 2.0, 2.0, BodyType::Static);
+    for (int i = 0; i < 20; ++i) {  // bodies around, so that the tree has some depth
+      addBox(world, "other" + std::to_string(i), Vec2(10.0 + 3.0 * i, 5.0), 1.0, 1.0,
+             BodyType::Static);
+    }
+    addBox(world, "higher", Vec2(-0.4 * side, 0.0), 2.0, 2.0, BodyType::Static);
+    for (const Vec2& end : {Vec2(5.0, 0.3), Vec2(-5.0, -0.2), Vec2(0.1, 6.0)}) {
+      const RayHit hit = world.rayCast(Vec2(0.0, 0.0), end);
+      EXPECT_EQ(hit.body, lower);
+      EXPECT_EQ(hit.fraction, 0.0);
+      std::vector<RayHit> fan;
+      world.rayCastFan(Vec2(0.0, 0.0), {end}, RayFilter(), &fan);
+      EXPECT_EQ(fan[0].body, lower);
+    }
+  }
+}
+
 // Random shapes and rays: the tree must prune nothing the brute force over every shape would hit,
 // and the fan form must answer as single rays do.
 TEST(WorldRayCast, MatchesTestingEveryShapeAndTheFanMatchesSingleRays) {

@@ -1,0 +1,345 @@
+// Box2D v3.1.1's benchmark scenes (shared/benchmarks.c, its benchmark app's step counts), built as
+// the release build builds them; `quick` takes Box2D's debug sizes and a tenth of the steps.
+// Geometry Box2D has and impulse2d has not is described as Box2D has it (capsules, rounded
+// polygons: BenchShape), or by its closest equivalent, each noted where it is built and in
+// docs/benchmarks.md: segments and chains as thin static boxes whose face is the segment.
+#include <cmath>
+#include <cstdint>
+
+#include "bench_human.hpp"
+#include "bench_scene.hpp"
+
+namespace impulse2d_bench {
+namespace {
+
+constexpr double kPi = impulse2d::kPi;
+
+SceneSpec v3Scene(const std::string& name, SceneKind kind, int steps) {
+  SceneSpec scene;
+  scene.name = "v3_" + name;
+  scene.kind = kind;
+  scene.gravity = Vec2(0.0, -10.0);  // b2DefaultWorldDef
+  scene.sleep = true;                // likewise; three scenes turn it off
+  scene.timeFirstStep = false;       // the app times steps 2..N
+  scene.duration = steps / 60.0;     // at the app's 60 Hz: exactly its step count
+  return scene;
+}
+
+BenchShape box(double halfWidth, double halfHeight, const Vec2& center = Vec2::Zero()) {
+  BenchShape shape;
+  shape.kind = BenchShape::Kind::Box;
+  shape.size = Vec2(2.0 * halfWidth, 2.0 * halfHeight);
+  shape.center = center;
+  return shape;
+}
+
+BenchShape circle(double radius) {
+  BenchShape shape;
+  shape.kind = BenchShape::Kind::Circle;
+  shape.radius = radius;
+  return shape;
+}
+
+BenchBody body(const Vec2& position, bool isStatic, const BenchShape& shape) {
+  BenchBody b;
+  b.isStatic = isStatic;
+  b.position = position;
+  b.shapes.push_back(shape);
+  return b;
+}
+
+int add(SceneSpec& scene, const BenchBody& b) {
+  scene.bodies.push_back(b);
+  return static_cast<int>(scene.bodies.size()) - 1;
+}
+
+BenchJoint pin(int a, int b, const Vec2& anchor) {
+  BenchJoint joint;
+  joint.bodyA = a;
+  joint.bodyB = b;
+  joint.anchor = anchor;
+  return joint;
+}
+
+// Boxes of half-width `extent` in rows of base .. 1, as CreateLargePyramid and
+// CreateSmallPyramid place them: row i at y = (2i + 1) extent + baseY, its first box at
+// x = (i + 1) extent + left.
+void addPyramid(SceneSpec& scene, int base, double extent, double left, double baseY) {
+  for (int i = 0; i < base; ++i) {
+    const double y = (2.0 * i + 1.0) * extent + baseY;
+    for (int j = i; j < base; ++j) {
+      const double x = (i + 1.0) * extent + 2.0 * (j - i) * extent + left;
+      add(scene, body(Vec2(x, y), false, box(extent, extent)));
+    }
+  }
+}
+
+// CreateJointGrid: N x N circles 1 m apart in columns k (x = k) and rows i (y = -i), each pinned
+// to the one above and the one to its left midway between them; the middle seven of the top row
+// are static. The circles' filter (category 2, mask ~2) keeps them from ever touching each other.
+// v3 also pins the six pairs of static neighbours to each other; those joints do nothing and are
+// left out (Chipmunk aborts on a joint between two static bodies).
+SceneSpec jointGrid(bool quick) {
+  SceneSpec scene = v3Scene("joint_grid", SceneKind::Jointed, quick ? 50 : 500);
+  scene.sleep = false;
+  scene.tolerance = 0.10;
+  const int n = quick ? 10 : 100;
+  BenchShape shape = circle(0.4);
+  shape.filter.categoryBits = 2;
+  shape.filter.maskBits = ~2u;  // a 32-bit complement in uint64 maskBits, as in benchmarks.c
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      const bool isStatic = k >= n / 2 - 3 && k <= n / 2 + 3 && i == 0;
+      const int index = add(scene, body(Vec2(k, -i), isStatic, shape));
+      if (i > 0) scene.joints.push_back(pin(index - 1, index, Vec2(k, -i + 0.5)));
+      if (k > 0 && !(isStatic && scene.bodies[index - n].isStatic)) {
+        scene.joints.push_back(pin(index - n, index, Vec2(k - 0.5, -i)));
+      }
+    }
+  }
+  return scene;
+}
+
+// CreateLargePyramid: unit boxes, base 100, on a 200 m x 2 m ground whose top is y = 0.
+SceneSpec largePyramid(bool quick) {
+  SceneSpec scene = v3Scene("large_pyramid", SceneKind::Resting, quick ? 50 : 500);
+  scene.sleep = false;
+  scene.tolerance = 0.10;
+  const int base = quick ? 20 : 100;
+  add(scene, body(Vec2(0.0, -1.0), true, box(100.0, 1.0)));
+  addPyramid(scene, base, 0.5, -0.5 * base, 0.0);
+  return scene;
+}
+
+// CreateManyPyramids: rows of small pyramids (base 10, unit boxes), each row on a segment 11 m
+// above the last. A segment is a static box 10 cm thick whose top face is the segment (the row
+// of pyramids below ends 1 m under it).
+SceneSpec manyPyramids(bool quick) {
+  SceneSpec scene = v3Scene("many_pyramids", SceneKind::Resting, quick ? 20 : 200);
+  scene.sleep = false;
+  scene.tolerance = 0.10;
+  const int baseCount = 10, rowCount = quick ? 5 : 20, columnCount = quick ? 5 : 20;
+  const double extent = 0.5, thickness = 0.1;
+  const double groundDeltaY = 2.0 * extent * (baseCount + 1.0);
+  const double groundWidth = 2.0 * extent * columnCount * (baseCount + 1.0);
+  BenchBody ground;
+  ground.isStatic = true;
+  for (int i = 0; i < rowCount; ++i) {
+    ground.shapes.push_back(
+        box(groundWidth, 0.5 * thickness, Vec2(0.0, i * groundDeltaY - 0.5 * thickness)));
+  }
+  add(scene, ground);
+  const double baseWidth = 2.0 * extent * baseCount;
+  double baseY = 0.0;
+  for (int row = 0; row < rowCount; ++row) {
+    for (int column = 0; column < columnCount; ++column) {
+      const double centerX =
+          -0.5 * groundWidth + column * (baseWidth + 2.0 * extent) + extent;  // CreateSmallPyramid
+      addPyramid(scene, baseCount, extent, centerX - 0.5, baseY);
+    }
+    baseY += groundDeltaY;
+  }
+  return scene;
+}
+
+// CreateRain / StepRain: rows of ground 45 m apart made of 0.5 m boxes (each its own static body
+// here; v3 puts them all on one), and every eighth step a column of groups of ragdolls (one group
+// per row) appears 40 m above its ground; once every column has one, each eighth step destroys
+// the oldest column and creates it again.
+SceneSpec rain(bool quick) {
+  // Quick: 200 steps, so the first ragdolls (falling 40 m, about 170 steps) land.
+  const int steps = quick ? 200 : 1000;
+  SceneSpec scene = v3Scene("rain", SceneKind::Jointed, steps);
+  scene.tolerance = 0.05;
+  const int rowCount = quick ? 3 : 5, columnCount = quick ? 10 : 40, groupSize = quick ? 2 : 5;
+  const int gridCount = quick ? 200 : 500, delay = quick ? 0x1F : 0x7;
+  const double gridSize = 0.5;
+  for (int i = 0; i < rowCount; ++i) {
+    double x = -0.5 * gridCount * gridSize;
+    for (int j = 0; j <= gridCount; ++j) {
+      add(scene, body(Vec2(x, 45.0 * i), true, box(0.5 * gridSize, 0.5 * gridSize)));
+      x += gridSize;
+    }
+  }
+  // One group per (row, column), as v3's g_rainData.groups.
+  const double span = gridCount * gridSize, groupDistance = span / columnCount;
+  for (int row = 0; row < rowCount; ++row) {
+    for (int column = 0; column < columnCount; ++column) {
+      Vec2 position(-0.5 * span + groupDistance * (column + 0.5), 40.0 + 45.0 * row);
+      for (int i = 0; i < groupSize; ++i) {
+        addHuman(scene, row * columnCount + column, position, i + 1);
+        position.x() += 0.5;
+      }
+    }
+  }
+  int columnsFilled = 0, nextColumn = 0;
+  for (int step = 0; step < steps; ++step) {
+    if ((step & delay) != 0) continue;
+    if (columnsFilled < columnCount) {
+      for (int row = 0; row < rowCount; ++row) {
+        scene.events.push_back({step, row * columnCount + columnsFilled, true});
+      }
+      ++columnsFilled;
+    } else {
+      for (int row = 0; row < rowCount; ++row) {
+        scene.events.push_back({step, row * columnCount + nextColumn, false});
+        scene.events.push_back({step, row * columnCount + nextColumn, true});
+      }
+      nextColumn = (nextColumn + 1) % columnCount;
+    }
+  }
+  return scene;
+}
+
+// CreateSmash: no gravity; an 8 m box of density 8 at 40 m/s hits a block of 0.4 m boxes that
+// touch edge to edge and start asleep.
+SceneSpec smash(bool quick) {
+  // Quick: 90 steps, so the impact (at 1.15 s) happens.
+  SceneSpec scene = v3Scene("smash", SceneKind::Impact, quick ? 90 : 300);
+  scene.gravity = Vec2::Zero();
+  scene.tolerance = 1e-3;
+  BenchBody ram = body(Vec2(-20.0, 0.0), false, box(4.0, 4.0));
+  ram.velocity = Vec2(40.0, 0.0);
+  ram.shapes[0].density = 8.0;
+  add(scene, ram);
+  const double d = 0.4;
+  const int columns = quick ? 20 : 120, rows = quick ? 10 : 80;
+  for (int i = 0; i < columns; ++i) {
+    for (int j = 0; j < rows; ++j) {
+      BenchBody block =
+          body(Vec2(i * d + 30.0, (j - rows / 2.0) * d), false, box(0.5 * d, 0.5 * d));
+      block.awake = false;
+      add(scene, block);
+    }
+  }
+  return scene;
+}
+
+// CreateSpinner: a 40 m drum (a chain loop of 360 segments) and a 40.4 m rounded blade turned by
+// a motor at 5 rad/s through a pile of capsules, circles and squares. Pinned 20 m below the
+// drum's centre, the blade reaches 0.2 m past the chain; in v3 it grinds through the chain once a
+// turn (its continuous collision leaves out a one-sided chain the blade's centre never crosses,
+// and its soft contact gives). Each segment here is a static box 1 m thick outside the drum,
+// which continuous collision would stop the blade at, in v3 and impulse2d alike: the boxes' inner
+// faces lie on a circle of 40.25 m, so the blade turns as in v3, just clear of the drum.
+SceneSpec spinner(bool quick) {
+  SceneSpec scene = v3Scene("spinner", SceneKind::Contained, quick ? 140 : 1400);
+  const double drumRadius = 40.25;
+  scene.container.kind = Container::Kind::Disc;
+  scene.container.center = Vec2(0.0, 32.0);
+  scene.container.radius = drumRadius;
+  const int pointCount = 360;
+  const double thickness = 1.0;
+  std::vector<Vec2> points;
+  const impulse2d::Rot turn(-2.0 * kPi / pointCount);
+  Vec2 p(drumRadius, 0.0);
+  for (int i = 0; i < pointCount; ++i) {
+    points.emplace_back(p.x(), p.y() + 32.0);
+    p = turn.apply(p);
+  }
+  int ground = -1;
+  for (int i = 0; i < pointCount; ++i) {
+    const Vec2 a = points[i], b = points[(i + 1) % pointCount];
+    const Vec2 along = (b - a).normalized();
+    const Vec2 outward(-along.y(), along.x());  // the points run clockwise: left is outside
+    BenchBody segment = body(0.5 * (a + b) + 0.5 * thickness * outward, true,
+                             box(0.5 * (b - a).norm(), 0.5 * thickness));
+    segment.angle = std::atan2(along.y(), along.x());
+    segment.shapes[0].friction = 0.1;
+    const int index = add(scene, segment);
+    if (ground < 0) ground = index;
+  }
+
+  BenchShape blade;
+  blade.kind = BenchShape::Kind::Polygon;
+  blade.vertices = {Vec2(-0.4, -20.0), Vec2(0.4, -20.0), Vec2(0.4, 20.0), Vec2(-0.4, 20.0)};
+  blade.radius = 0.2;  // b2MakeRoundedBox(0.4, 20, 0.2)
+  blade.friction = 0.0;
+  BenchBody rotor = body(Vec2(0.0, 12.0), false, blade);
+  rotor.canSleep = false;
+  const int spinner = add(scene, rotor);
+  BenchJoint motor = pin(ground, spinner, Vec2(0.0, 12.0));
+  motor.enableMotor = true;
+  motor.motorSpeed = 5.0;
+  motor.maxMotorTorque = 40000.0;
+  scene.joints.push_back(motor);
+
+  BenchShape capsule;
+  capsule.kind = BenchShape::Kind::Capsule;
+  capsule.vertices = {Vec2(-0.25, 0.0), Vec2(0.25, 0.0)};
+  capsule.radius = 0.25;
+  const BenchShape shapes[3] = {capsule, circle(0.35), box(0.35, 0.35)};
+  const int bodyCount = quick ? 499 : 3038;
+  double x = -24.0, y = 2.0;
+  for (int i = 0; i < bodyCount; ++i) {
+    BenchShape shape = shapes[i % 3];
+    shape.friction = 0.1;
+    shape.restitution = 0.1;
+    shape.density = 0.25;
+    add(scene, body(Vec2(x, y), false, shape));
+    x += 1.0;
+    if (x > 24.0) {
+      x = -24.0;
+      y += 1.0;
+    }
+  }
+  return scene;
+}
+
+// CreateTumbler: a 20 m square drum of four walls (density 50) turned at 25 degrees/s by a motor
+// about its centre, holding a grid of 0.25 m boxes. The ground body has no shape: it only
+// anchors the motor.
+SceneSpec tumbler(bool quick) {
+  SceneSpec scene = v3Scene("tumbler", SceneKind::Contained, quick ? 75 : 750);
+  BenchBody ground;
+  ground.isStatic = true;
+  const int groundIndex = add(scene, ground);
+  BenchBody drum;
+  drum.position = Vec2(0.0, 10.0);
+  for (const auto& [half, center] : {std::make_pair(Vec2(0.5, 10.0), Vec2(10.0, 0.0)),
+                                     std::make_pair(Vec2(0.5, 10.0), Vec2(-10.0, 0.0)),
+                                     std::make_pair(Vec2(10.0, 0.5), Vec2(0.0, 10.0)),
+                                     std::make_pair(Vec2(10.0, 0.5), Vec2(0.0, -10.0))}) {
+    BenchShape wall = box(half.x(), half.y(), center);
+    wall.density = 50.0;
+    drum.shapes.push_back(wall);
+  }
+  const int drumIndex = add(scene, drum);
+  BenchJoint motor = pin(groundIndex, drumIndex, Vec2(0.0, 10.0));
+  motor.enableMotor = true;
+  motor.motorSpeed = (kPi / 180.0) * 25.0;
+  motor.maxMotorTorque = 1e8;
+  scene.joints.push_back(motor);
+  scene.container.kind = Container::Kind::BodyBox;
+  scene.container.body = drumIndex;
+  scene.container.lower = Vec2(-9.5, -9.5);
+  scene.container.upper = Vec2(9.5, 9.5);
+
+  const int gridCount = quick ? 20 : 45;
+  double y = -0.2 * gridCount + 10.0;
+  for (int i = 0; i < gridCount; ++i) {
+    double x = -0.2 * gridCount;
+    for (int j = 0; j < gridCount; ++j) {
+      add(scene, body(Vec2(x, y), false, box(0.125, 0.125)));
+      x += 0.4;
+    }
+    y += 0.4;
+  }
+  return scene;
+}
+
+}  // namespace
+
+std::vector<SceneSpec> makeV3Scenes(bool quick) {
+  std::vector<SceneSpec> scenes;
+  scenes.push_back(jointGrid(quick));
+  scenes.push_back(largePyramid(quick));
+  scenes.push_back(manyPyramids(quick));
+  scenes.push_back(rain(quick));
+  scenes.push_back(smash(quick));
+  scenes.push_back(spinner(quick));
+  scenes.push_back(tumbler(quick));
+  return scenes;
+}
+
+}  // namespace impulse2d_bench

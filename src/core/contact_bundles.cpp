@@ -1,0 +1,310 @@
+#include "contact_bundles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "constraint_coloring.hpp"
+#include "contact_math.hpp"
+
+namespace impulse2d {
+namespace {
+
+// A contact takes the first colour free for both its bodies at or after a colour picked by its
+// key's hash among the first kColorSpread. Plain first fit in key order gives every body its
+// contacts in the same pattern (a box's left support before its right one, across the whole
+// pile), and Gauss-Seidel in such a systematic order leans tall piles over: the 5050-box pyramid
+// moved 1.9 m sideways in 300 steps; spread over 8 colours it moves 7 mm (12 colours in all).
+constexpr int kColorSpread = 8;
+// Colours of fewer contacts than this join the overflow.
+constexpr int kMinColorSize = 2 * kBundleLanes;
+
+int startColor(uint64_t key) {
+  key ^= key >> 33;
+  key *= 0xff51afd7ed558ccdull;
+  key ^= key >> 33;
+  return static_cast<int>(key % kColorSpread);
+}
+
+// A body as a lane sees it: the row it reads (~row when it must not write it back), its inverse
+// masses, its centre of mass and velocity when the step began. In scalars, as everything in
+// fillLane: a Vec2 stored as two doubles and read back at once as one 16-byte vector stalls the
+// processor's store forwarding (math.hpp), and that was most of this stage's time.
+struct LaneBody {
+  int32_t offset;
+  double invMass, invInertia;
+  double cx, cy, vx, vy, w;
+};
+
+LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, int slot) {
+  const int entry = bodies.entryOf(slot);
+  if (entry < 0) {  // static or asleep: the identity row, read only
+    const Vec2& c = items[slot].center;
+    return {~static_cast<int32_t>(bodies.identityRow() * kStateDoubles), 0.0, 0.0, c.x(), c.y(),
+            0.0, 0.0, 0.0};
+  }
+  const BodySim& sim = bodies.sim(entry);
+  const BodyState& s = bodies.states()[entry];
+  const int32_t offset = static_cast<int32_t>(entry * kStateDoubles);
+  return {bodies.isDynamicEntry(entry) ? offset : ~offset,
+          sim.invMass,
+          sim.invInertia,
+          sim.center0.x(),
+          sim.center0.y(),
+          s.vx,
+          s.vy,
+          s.w};
+}
+
+void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorAy,
+              double anchorBx, double anchorBy, double baseSeparation, double normalMass,
+              double tangentMass, double normalImpulse, double tangentImpulse) {
+  BundlePoint& p = c.points[i];
+  p.anchorAx[lane] = anchorAx;
+  p.anchorAy[lane] = anchorAy;
+  p.anchorBx[lane] = anchorBx;
+  p.anchorBy[lane] = anchorBy;
+  c.baseSeparation[i][lane] = static_cast<float>(baseSeparation);
+  c.normalMass[i][lane] = static_cast<float>(normalMass);
+  c.tangentMass[i][lane] = static_cast<float>(tangentMass);
+  p.normalImpulse[lane] = normalImpulse;
+  p.tangentImpulse[lane] = tangentImpulse;
+}
+
+// The largest |h| for which a row with arms armA, armB (K = k) keeps K <= 1.5 k when its arms
+// become armA + h and armB - h: K grows by at most S h^2 + 2 B |h| (S = iA + iB,
+// B = iA |armA| + iB |armB|), which is k / 2 at the root below.
+double shiftWithin(const LaneBody& a, const LaneBody& b, double k, double armA, double armB) {
+  const double sum = a.invInertia + b.invInertia;
+  if (!(sum > 0.0)) return std::numeric_limits<float>::max();
+  const double lever = a.invInertia * std::abs(armA) + b.invInertia * std::abs(armB);
+  return (std::sqrt(lever * lever + 0.5 * sum * k) - lever) / sum;
+}
+
+// What restitution reads of a lane that does not bounce.
+void clearRestitution(BundleExtra& e, int lane) {
+  e.restitution[lane] = 0.0;
+  for (int i = 0; i < 2; ++i) e.approach[i][lane] = e.maxNormalImpulse[i][lane] = 0.0;
+}
+
+// A lane without a contact: it reads the identity row, writes the sink, and every impulse it
+// computes is zero.
+void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOffset) {
+  c.offsetA[lane] = c.offsetB[lane] = ~identityOffset;
+  c.invMassA[lane] = c.invInertiaA[lane] = c.invMassB[lane] = c.invInertiaB[lane] = 0.0;
+  c.normalX[lane] = c.normalY[lane] = c.friction[lane] = 0.0;
+  c.maxShift[lane] = 0.0f;
+  c.k12[lane] = c.inverse11[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
+  c.laneFlags[lane] = 0;
+  e.k[0][lane] = e.k[1][lane] = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
+  }
+  clearRestitution(e, lane);
+}
+
+// One contact's lane, as the step begins.
+void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact,
+              const LaneBody& a, const LaneBody& b, int substeps, bool soft) {
+  const Manifold& m = contact.manifold;
+  c.offsetA[lane] = a.offset;
+  c.offsetB[lane] = b.offset;
+  c.invMassA[lane] = a.invMass;
+  c.invInertiaA[lane] = a.invInertia;
+  c.invMassB[lane] = b.invMass;
+  c.invInertiaB[lane] = b.invInertia;
+  c.normalX[lane] = m.normal.x();
+  c.normalY[lane] = m.normal.y();
+  c.friction[lane] = static_cast<float>(contact.friction);
+  const bool bounces = contact.restitution > 0.0;
+  uint8_t flags = a.invMass > 0.0 && b.invMass > 0.0 ? 0 : kAgainstStaticLane;
+  if (bounces) {
+    flags |= kRestitutionLane;
+    e.restitution[lane] = contact.restitution;
+  }
+  const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
+  const double mass = a.invMass + b.invMass;
+  double normalArmA[2] = {0.0, 0.0}, normalArmB[2] = {0.0, 0.0};
+  double maxShift = std::numeric_limits<float>::max();
+  for (int i = 0; i < 2; ++i) {
+    e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
+    if (bounces) e.maxNormalImpulse[i][lane] = e.approach[i][lane] = 0.0;
+    if (i >= m.pointCount) {
+      setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+      continue;
+    }
+    const ManifoldPoint& mp = m.points[i];
+    const double px = mp.point.x(), py = mp.point.y();
+    const double aAx = px - a.cx, aAy = py - a.cy, aBx = px - b.cx, aBy = py - b.cy;
+    normalArmA[i] = aAx * ny - aAy * nx;
+    normalArmB[i] = aBx * ny - aBy * nx;
+    const double tangentArmA = aAx * nx + aAy * ny, tangentArmB = aBx * nx + aBy * ny;
+    const double normalK = mass + a.invInertia * normalArmA[i] * normalArmA[i] +
+                           b.invInertia * normalArmB[i] * normalArmB[i];
+    const double tangentK = mass + a.invInertia * tangentArmA * tangentArmA +
+                            b.invInertia * tangentArmB * tangentArmB;
+    maxShift = std::min({maxShift, shiftWithin(a, b, normalK, normalArmA[i], normalArmB[i]),
+                         shiftWithin(a, b, tangentK, tangentArmA, tangentArmB)});
+    setPoint(c, i, lane, aAx, aAy, aBx, aBy,
+             mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
+             normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
+             contact.normalImpulse[i] / substeps, contact.tangentImpulse[i] / substeps);
+    // Normal speed of B relative to A at the point: v + w x r of each.
+    if (bounces) {
+      const double relativeX = (b.vx - b.w * aBy) - (a.vx - a.w * aAy);
+      const double relativeY = (b.vy + b.w * aBx) - (a.vy + a.w * aAx);
+      e.approach[i][lane] = relativeX * nx + relativeY * ny;
+    }
+  }
+  c.maxShift[lane] = static_cast<float>(maxShift);
+  const double k11 = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
+                     b.invInertia * normalArmB[0] * normalArmB[0];
+  if (soft) {
+    e.k[0][lane] = k11;
+    e.k[1][lane] = 0.0;
+  }
+  c.k12[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
+  c.inverse11[lane] = c.normalMass[0][lane];
+  c.laneFlags[lane] = flags;
+  if (m.pointCount < 2) return;
+  const double k22 = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
+                     b.invInertia * normalArmB[1] * normalArmB[1];
+  const double k12 = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
+                     b.invInertia * normalArmB[0] * normalArmB[1];
+  if (soft) e.k[1][lane] = k22;
+  c.k12[lane] = static_cast<float>(k12);
+  if (wellConditioned(k11, k12, k22)) {
+    const double det = k11 * k22 - k12 * k12;
+    c.inverse11[lane] = static_cast<float>(k22 / det);
+    c.inverse12[lane] = static_cast<float>(-k12 / det);
+    c.inverse22[lane] = static_cast<float>(k11 / det);
+  } else {
+    c.inverse11[lane] = 0.0;
+    c.laneFlags[lane] = flags | kSequentialLane;
+  }
+}
+
+}  // namespace
+
+void ContactBundles::assign(const std::vector<Contact>& contacts,
+                            const std::vector<int>& jointSlots,
+                            const std::vector<std::pair<int, int>>& jointBodies,
+                            const SubstepBodies& bodies) {
+  ConstraintColoring coloring;
+  coloring.reset(bodies.dynamicCount());
+  constexpr int kOverflow = ConstraintColoring::kMaxColors;  // its index in `count`
+  laneOf_.resize(contacts.size());
+  colorOf_.resize(contacts.size());
+  jointColor_.resize(jointSlots.size());
+  int count[kOverflow + 1] = {};      // constraints, joints and contacts
+  int jointCount[kOverflow + 1] = {};
+  auto dynamicEntry = [&](int slot) {
+    const int entry = bodies.entryOf(slot);
+    return bodies.isDynamicEntry(entry) ? entry : -1;
+  };
+  for (size_t k = 0; k < jointSlots.size(); ++k) {
+    const int color = coloring.assign(dynamicEntry(jointBodies[k].first),
+                                      dynamicEntry(jointBodies[k].second),
+                                      startColor(static_cast<uint64_t>(jointSlots[k]) << 32));
+    jointColor_[k] = color == ConstraintColoring::kOverflow ? kOverflow : color;
+    ++count[jointColor_[k]];
+    ++jointCount[jointColor_[k]];
+  }
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& contact = contacts[i];
+    colorOf_[i] = -1;
+    if (contact.manifold.pointCount == 0) continue;
+    const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
+    if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
+    const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
+    colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflow : color;
+    ++count[colorOf_[i]];
+  }
+  // A colour of a few constraints costs the threads a stage for little work: they join the
+  // overflow. Then each colour's bundles, and last the overflow's.
+  int bundleOf[kOverflow + 1];  // each colour's first bundle
+  int compact[kOverflow + 1];   // each colour's index among the colours kept
+  int bundles = 0;
+  colorStart_.clear();
+  for (int color = 0; color <= kOverflow; ++color) {
+    if (color < kOverflow && count[color] < kMinColorSize) {
+      count[kOverflow] += count[color];
+      jointCount[kOverflow] += jointCount[color];
+      bundleOf[color] = compact[color] = -1;
+      continue;
+    }
+    compact[color] = static_cast<int>(colorStart_.size());
+    colorStart_.push_back(bundles);
+    bundleOf[color] = bundles;
+    bundles += (count[color] - jointCount[color] + kBundleLanes - 1) / kBundleLanes;
+  }
+  jointsOfColor_.resize(colorStart_.size());
+  for (std::vector<int>& list : jointsOfColor_) list.clear();
+  for (size_t k = 0; k < jointSlots.size(); ++k) {
+    const int color = compact[jointColor_[k]] < 0 ? kOverflow : jointColor_[k];
+    jointsOfColor_[compact[color]].push_back(jointSlots[k]);
+  }
+  bundles_.resize(static_cast<size_t>(bundles));
+  extras_.resize(static_cast<size_t>(bundles));
+  int rank[kOverflow + 1] = {};
+  contactCount_ = 0;
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    laneOf_[i] = -1;
+    if (colorOf_[i] < 0) continue;
+    const int color = bundleOf[colorOf_[i]] < 0 ? kOverflow : colorOf_[i];
+    const int r = rank[color]++;
+    laneOf_[i] = (bundleOf[color] + r / kBundleLanes) * kBundleLanes + r % kBundleLanes;
+    ++contactCount_;
+  }
+  for (int color = 0; color <= kOverflow; ++color) {
+    const int lanes = count[color] - jointCount[color];
+    for (int r = 0; bundleOf[color] >= 0 && r < lanes; r += kBundleLanes) {
+      bundles_[bundleOf[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, lanes - r);
+    }
+  }
+}
+
+void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
+                          const SubstepBodies& bodies, const std::vector<Body>& items, int substeps,
+                          bool soft) {
+  for (size_t i = first; i < last; ++i) {
+    if (laneOf_[i] < 0) continue;
+    const Contact& contact = contacts[i];
+    const int k = laneOf_[i] / kBundleLanes, lane = laneOf_[i] % kBundleLanes;
+    fillLane(bundles_[k], extras_[k], lane, contact, laneBody(bodies, items, contact.bodyA),
+             laneBody(bodies, items, contact.bodyB), substeps, soft);
+  }
+}
+
+void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies) {
+  const int32_t identityOffset = static_cast<int32_t>(bodies.identityRow() * kStateDoubles);
+  for (int k = begin; k < end; ++k) {
+    ContactBundle& c = bundles_[k];
+    BundleExtra& e = extras_[k];
+    for (int lane = c.laneCount; lane < kBundleLanes; ++lane) setEmptyLane(c, e, lane, identityOffset);
+    uint8_t any = 0;
+    for (int lane = 0; lane < c.laneCount; ++lane) any |= c.laneFlags[lane];
+    c.anySequential = (any & kSequentialLane) != 0;
+    c.anyRestitution = (any & kRestitutionLane) != 0;
+    // Lanes of a bouncing bundle that do not bounce still go through its restitution rows.
+    for (int lane = 0; c.anyRestitution && lane < c.laneCount; ++lane) {
+      if (!(c.laneFlags[lane] & kRestitutionLane)) clearRestitution(e, lane);
+    }
+  }
+}
+
+void ContactBundles::store(std::vector<Contact>& contacts, size_t first, size_t last) const {
+  for (size_t i = first; i < last; ++i) {
+    if (laneOf_[i] < 0) continue;
+    Contact& contact = contacts[i];
+    const BundleExtra& e = extras_[laneOf_[i] / kBundleLanes];
+    const int lane = laneOf_[i] % kBundleLanes;
+    for (int p = 0; p < contact.manifold.pointCount; ++p) {
+      contact.normalImpulse[p] = e.totalNormalImpulse[p][lane];
+      contact.tangentImpulse[p] = e.totalTangentImpulse[p][lane];
+    }
+  }
+}
+
+}  // namespace impulse2d

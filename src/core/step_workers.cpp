@@ -1,0 +1,143 @@
+#include "step_workers.hpp"
+
+#include <oneapi/tbb/info.h>
+#include <oneapi/tbb/task_arena.h>
+#include <oneapi/tbb/task_group.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <thread>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace impulse2d {
+namespace {
+
+// Waits a moment: a pause while the wait is short, then the processor goes to others (a machine
+// running more threads than cores would otherwise spin away the time of the thread waited for).
+void backOff(int& spins) {
+  if (++spins < 2000) {
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_pause();
+#endif
+  } else {
+    std::this_thread::yield();
+  }
+}
+
+}  // namespace
+
+struct StepWorkers::Shared {
+  // A stage's blocks are cut into one run per worker: a worker claims the blocks of its own run
+  // first, so that in every pass over the same data (the colours of each sub-step) each thread
+  // takes the same part and finds it in its own cache; then it helps with the others' runs.
+  struct alignas(64) Run {
+    std::atomic<int> next{0};  // the next block to claim
+    int end = 0;
+  };
+  struct Stage {
+    explicit Stage(int runs) : runs(static_cast<size_t>(runs)) {}
+    std::deque<Run> runs;
+    alignas(64) std::atomic<int> done{0};
+    int blocks = 0;
+    const Block* fn = nullptr;
+  };
+
+  explicit Shared(int threads) : arena(threads) {}
+
+  // Claims and runs blocks of `stage`, its own run first, until none is left.
+  static void work(Stage& stage, int worker) {
+    const size_t runs = stage.runs.size();
+    for (size_t k = 0; k < runs; ++k) {
+      Run& run = stage.runs[(static_cast<size_t>(worker) + k) % runs];
+      for (int block = run.next.fetch_add(1, std::memory_order_relaxed); block < run.end;
+           block = run.next.fetch_add(1, std::memory_order_relaxed)) {
+        (*stage.fn)(block, worker);
+        stage.done.fetch_add(1, std::memory_order_release);
+      }
+    }
+  }
+
+  void helper(int worker) {
+    const Stage* seen = nullptr;
+    int spins = 0;
+    for (;;) {
+      Stage* stage = current.load(std::memory_order_acquire);
+      if (stage != nullptr && stage != seen) {
+        seen = stage;
+        work(*stage, worker);
+        spins = 0;
+        continue;
+      }
+      if (ending.load(std::memory_order_acquire)) return;
+      backOff(spins);
+    }
+  }
+
+  tbb::task_arena arena;
+  // This session's stages, by number: a deque keeps them in place as it grows, so a helper that
+  // still holds a finished stage only finds no block left in it.
+  std::deque<Stage> stages;
+  std::atomic<Stage*> current{nullptr};
+  std::atomic<bool> ending{false};
+};
+
+StepWorkers::StepWorkers() = default;
+StepWorkers::~StepWorkers() = default;
+
+void StepWorkers::setThreads(int threads) {
+  // More threads than the processor runs at once would only wait for each other (and TBB warns
+  // that it has no workers for them): the result is the same on any number.
+  threads = std::max(1, std::min(threads, tbb::info::default_concurrency()));
+  if (threads == threads_) return;
+  threads_ = threads;
+  shared_.reset(threads > 1 ? new Shared(threads) : nullptr);
+}
+
+void StepWorkers::session(const std::function<void()>& body) {
+  if (threads_ == 1) {
+    body();
+    return;
+  }
+  Shared& s = *shared_;
+  s.stages.clear();
+  s.current.store(nullptr, std::memory_order_relaxed);
+  s.ending.store(false, std::memory_order_relaxed);
+  s.arena.execute([&] {
+    tbb::task_group helpers;
+    for (int worker = 1; worker < threads_; ++worker) {
+      helpers.run([&s, worker] { s.helper(worker); });
+    }
+    inSession_ = true;
+    body();
+    inSession_ = false;
+    s.ending.store(true, std::memory_order_release);
+    helpers.wait();
+  });
+}
+
+void StepWorkers::stage(int blocks, const Block& fn) {
+  if (!inSession_ || blocks <= 1) {
+    for (int block = 0; block < blocks; ++block) fn(block, 0);
+    return;
+  }
+  const int runs = std::min(threads_, blocks);
+  Shared::Stage& stage = shared_->stages.emplace_back(runs);
+  stage.blocks = blocks;
+  stage.fn = &fn;
+  for (int r = 0; r < runs; ++r) {  // run r: blocks [r blocks / runs, (r + 1) blocks / runs)
+    stage.runs[r].next.store(static_cast<int>(int64_t(r) * blocks / runs),
+                             std::memory_order_relaxed);
+    stage.runs[r].end = static_cast<int>(int64_t(r + 1) * blocks / runs);
+  }
+  shared_->current.store(&stage, std::memory_order_release);
+  Shared::work(stage, 0);
+  int spins = 0;
+  while (stage.done.load(std::memory_order_acquire) < blocks) backOff(spins);
+}
+
+}  // namespace impulse2d

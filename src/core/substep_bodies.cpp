@@ -1,0 +1,193 @@
+#include "substep_bodies.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <impulse2d/limits.hpp>
+
+namespace impulse2d {
+
+void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
+                           const Vec2& gravity, double h, int substeps, StepWorkers& workers) {
+  bodies_ = &bodies;
+  const int slots = static_cast<int>(bodies.size());
+  const int blocks = (slots + kSlotsPerBlock - 1) / kSlotsPerBlock;
+  auto rowOf = [&](int i) {  // 0: none, 1: a dynamic row, 2: a kinematic one
+    const Body& body = bodies[i];
+    if (!alive[i] || !body.awake || body.type == BodyType::Static) return 0;
+    return body.type == BodyType::Dynamic ? 1 : 2;
+  };
+  // Count each block's rows, so that every block knows where its own go: dynamic rows first,
+  // then kinematic ones, each in slot order, as if one thread had gone through the slots.
+  blockFirst_.assign(2 * static_cast<size_t>(blocks) + 2, 0);
+  workers.stage(blocks, [&](int block, int) {
+    for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
+      const int kind = rowOf(i);
+      if (kind != 0) ++blockFirst_[2 * (block + 1) + (kind - 1)];
+    }
+  });
+  for (int block = 1; block <= blocks; ++block) {
+    blockFirst_[2 * block] += blockFirst_[2 * (block - 1)];
+    blockFirst_[2 * block + 1] += blockFirst_[2 * (block - 1) + 1];
+  }
+  dynamicCount_ = blockFirst_[2 * blocks];
+  movingCount_ = dynamicCount_ + blockFirst_[2 * blocks + 1];
+  states_.resize(static_cast<size_t>(movingCount_) + 1 + static_cast<size_t>(workers.threads()));
+  sims_.resize(static_cast<size_t>(movingCount_));
+  starts_.resize(static_cast<size_t>(movingCount_));
+  loads_.resize(static_cast<size_t>(dynamicCount_));
+  entryOfSlot_.resize(bodies.size());
+  overflowedOfBlock_.resize(static_cast<size_t>(blocks));
+  workers.stage(blocks, [&](int block, int) {
+    int next[2] = {blockFirst_[2 * block], dynamicCount_ + blockFirst_[2 * block + 1]};
+    overflowedOfBlock_[block].clear();
+    for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
+      const int kind = rowOf(i);
+      entryOfSlot_[i] = kind == 0 ? -1 : next[kind - 1]++;
+      if (kind != 0 && !add(bodies[i], i, entryOfSlot_[i], gravity, h, substeps)) {
+        overflowedOfBlock_[block].push_back(i);
+      }
+    }
+  });
+  overflowed_.clear();
+  for (const std::vector<int>& list : overflowedOfBlock_) {
+    overflowed_.insert(overflowed_.end(), list.begin(), list.end());
+  }
+  // The identity row and the sinks.
+  std::fill(states_.begin() + movingCount_, states_.end(), BodyState());
+}
+
+bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravity, double h,
+                        int substeps) {
+  BodyState& state = states_[entry];
+  state = BodyState();
+  state.vx = body.linearVelocity.x();
+  state.vy = body.linearVelocity.y();
+  state.w = body.angularVelocity;
+  BodySim& sim = sims_[entry];
+  sim = BodySim();
+  sim.center0 = body.center;
+  BodyStart& start = starts_[entry];
+  start = BodyStart();
+  start.slot = slot;
+  start.angle0 = body.angle;
+  start.q0 = body.xf.q;
+  start.localCenter = body.localCenter;
+  if (body.type == BodyType::Dynamic) {
+    sim.invMass = body.invMass;
+    sim.invInertia = body.invInertia;
+    BodyLoad& load = loads_[entry];
+    load = BodyLoad();
+    load.dvx = h * (gravity.x() + body.invMass * body.force.x());
+    load.dvy = h * (gravity.y() + body.invMass * body.force.y());
+    load.dw = h * body.invInertia * body.torque;
+    // Implicit damping: stable for any coefficient and sub-step.
+    if (body.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * body.linearDamping);
+    if (body.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * body.angularDamping);
+    // The source of non-finite impulses: a force too large for the body's mass, which within
+    // the step would take it faster than across the whole world. It stands still with infinite
+    // mass for the step, before any impulse, and is removed at its end (world_bounds.cpp).
+    const double maxSpeed = kWorldExtent / (h * substeps);
+    auto fits = [&](double v, double dv) { return std::abs(v) + substeps * std::abs(dv) <= maxSpeed; };
+    if (!(fits(state.vx, load.dvx) && fits(state.vy, load.dvy) && fits(state.w, load.dw))) {
+      state.vx = state.vy = state.w = 0.0;
+      sim.invMass = sim.invInertia = 0.0;
+      load = BodyLoad();
+      return false;
+    }
+  } else {
+    start.kinematicVelocity = body.linearVelocity;
+    start.kinematicAngularVelocity = body.angularVelocity;
+  }
+  return true;
+}
+
+void SubstepBodies::integrateVelocities(int begin, int end) {
+  const int last = std::min(end, dynamicCount_);
+  for (int e = begin; e < last; ++e) {
+    BodyState& s = states_[e];
+    const BodyLoad& load = loads_[e];
+    s.vx = (s.vx + load.dvx) * load.linearDamping;
+    s.vy = (s.vy + load.dvy) * load.linearDamping;
+    s.w = (s.w + load.dw) * load.angularDamping;
+  }
+}
+
+void SubstepBodies::integratePositions(int begin, int end, double h) {
+  for (int e = begin; e < end; ++e) {
+    BodyState& s = states_[e];
+    if (e >= dynamicCount_) {  // impulses cannot change a kinematic velocity, nor may a NaN
+      const BodyStart& start = starts_[e];
+      s.vx = start.kinematicVelocity.x();
+      s.vy = start.kinematicVelocity.y();
+      s.w = start.kinematicAngularVelocity;
+    }
+    s.dx += h * s.vx;
+    s.dy += h * s.vy;
+    const double turn = h * s.w;
+    s.turned += turn;
+    const Rot q = Rot::fromCosSin(s.qc, s.qs) * rotationBy(turn);
+    s.qc = q.c;
+    s.qs = q.s;
+  }
+}
+
+SolverBody SubstepBodies::view(int slot) const {
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0) {
+    SolverBody e = solverView((*bodies_)[slot]);
+    e.linearVelocity.setZero();
+    e.angularVelocity = e.invMass = e.invInertia = 0.0;
+    return e;
+  }
+  const BodyState& s = states_[entry];
+  const BodySim& sim = sims_[entry];
+  const BodyStart& start = starts_[entry];
+  SolverBody e;
+  e.linearVelocity = Vec2(s.vx, s.vy);
+  e.angularVelocity = s.w;
+  e.invMass = sim.invMass;
+  e.invInertia = sim.invInertia;
+  e.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
+  e.angle = start.angle0 + s.turned;
+  e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
+  e.localCenter = start.localCenter;
+  return e;
+}
+
+void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0 || entry >= dynamicCount_) return;
+  BodyState& s = states_[entry];
+  s.vx = view.linearVelocity.x();
+  s.vy = view.linearVelocity.y();
+  s.w = view.angularVelocity;
+  if (!pose) return;
+  const BodySim& sim = sims_[entry];
+  const BodyStart& start = starts_[entry];
+  s.dx = view.center.x() - sim.center0.x();
+  s.dy = view.center.y() - sim.center0.y();
+  s.turned = view.angle - start.angle0;
+  const Rot q = start.q0.inverseTimes(view.q);
+  s.qc = q.c;
+  s.qs = q.s;
+}
+
+void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const {
+  for (int e = begin; e < std::min(end, movingCount_); ++e) {
+    const BodyState& s = states_[e];
+    const BodySim& sim = sims_[e];
+    const BodyStart& start = starts_[e];
+    Body& body = bodies[start.slot];
+    body.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
+    body.angle = start.angle0 + s.turned;
+    body.xf.q = Rot(body.angle);
+    body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+    if (e < dynamicCount_) {
+      body.linearVelocity = Vec2(s.vx, s.vy);
+      body.angularVelocity = s.w;
+    }
+  }
+}
+
+}  // namespace impulse2d

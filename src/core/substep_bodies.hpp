@@ -1,0 +1,128 @@
+// The sub-stepping solvers' bodies. Everything a contact row reads and writes of a body sits in
+// one 64-byte BodyState, kept as the motion since the step began rather than as a pose:
+//
+//   [ vx vy w | turned | dx dy | qc qs ]    velocity, angle turned, centre moved, rotation turned
+//
+// so a body the step does not move (static, asleep) is the identity state, shared by all of them
+// in one read-only row, and a contact needs no pose of it. The rows are laid out
+//
+//   [ awake dynamic ... | awake kinematic ... | identity | one sink per worker ]
+//   0                   dynamicCount          movingCount
+//
+// A constraint writes a body back only when it is dynamic; the lanes of other bodies write into
+// their worker's sink, which nothing reads, so no two threads ever write one line.
+#pragma once
+
+#include <impulse2d/body.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "solver_body.hpp"
+#include "step_workers.hpp"
+
+namespace impulse2d {
+
+struct alignas(64) BodyState {
+  double vx = 0.0, vy = 0.0, w = 0.0;  // m/s of the centre of mass, rad/s
+  double turned = 0.0;                 // rad since the step began (continuous)
+  double dx = 0.0, dy = 0.0;           // m the centre of mass moved since the step began
+  double qc = 1.0, qs = 0.0;           // Rot(turned), to round-off
+};
+static_assert(sizeof(BodyState) == 64, "one cache line per body");
+
+/// Field offsets of BodyState in doubles, for gathers.
+enum BodyStateField : int64_t { kVx = 0, kVy, kW, kTurned, kDx, kDy, kQc, kQs, kStateDoubles };
+
+/// What contacts read of a moving body as the step begins (fill: 32 bytes a body).
+struct BodySim {
+  Vec2 center0 = Vec2::Zero();  // centre of mass when the step began
+  double invMass = 0.0, invInertia = 0.0;
+};
+
+/// What integrating a dynamic body's velocity adds each sub-step (constant over the step):
+///   v = (v + dv) * damping.
+struct BodyLoad {
+  double dvx = 0.0, dvy = 0.0, dw = 0.0;
+  double linearDamping = 1.0, angularDamping = 1.0;  // factors per sub-step
+};
+
+/// The rest, read once or twice a step: where the body began, and a kinematic body's velocity.
+struct BodyStart {
+  int slot = -1;
+  double angle0 = 0.0;
+  Rot q0;
+  Vec2 localCenter = Vec2::Zero();
+  Vec2 kinematicVelocity = Vec2::Zero();
+  double kinematicAngularVelocity = 0.0;
+};
+
+class SubstepBodies {
+ public:
+  /// Starts a step of sub-steps of h: a row for every living, awake, non-static body (dynamic
+  /// first, in slot order), then the identity row and `workers` sinks.
+  /// A body that a force would push faster than across the world within the step is held still
+  /// with infinite mass instead, and listed in overflowed().
+  void gather(const std::vector<Body>& bodies, const std::vector<char>& alive, const Vec2& gravity,
+              double h, int substeps, StepWorkers& workers);
+  const std::vector<int>& overflowed() const { return overflowed_; }
+
+  /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).
+  int64_t readRow(int slot) const {
+    const int entry = entryOfSlot_[slot];
+    return entry < 0 ? identityRow() : entry;
+  }
+  /// The row it writes, or -1 (write into the worker's sink) when the body is not dynamic.
+  int64_t writeRow(int slot) const {
+    const int entry = entryOfSlot_[slot];
+    return entry >= 0 && entry < dynamicCount_ ? entry : -1;
+  }
+  /// The moving entry of the body in `slot`, or -1.
+  int entryOf(int slot) const { return entryOfSlot_[slot]; }
+  bool isDynamicEntry(int entry) const { return entry >= 0 && entry < dynamicCount_; }
+
+  int dynamicCount() const { return dynamicCount_; }
+  int movingCount() const { return movingCount_; }
+  int64_t identityRow() const { return movingCount_; }
+  int64_t sinkRow(int worker) const { return movingCount_ + 1 + worker; }
+  BodyState* states() { return states_.data(); }
+  const BodyState* states() const { return states_.data(); }
+  BodyState& state(int entry) { return states_[entry]; }
+  const BodySim& sim(int entry) const { return sims_[entry]; }
+  const BodyStart& start(int entry) const { return starts_[entry]; }
+
+  /// Gravity, forces and damping over one sub-step, for the entries [begin, end).
+  void integrateVelocities(int begin, int end);
+  /// Moves the entries [begin, end) with their velocities over h (kinematic ones at their
+  /// prescribed velocities, whatever an impulse did).
+  void integratePositions(int begin, int end, double h);
+
+  /// A joint's scalar view of a body: its pose now, velocities and masses. Bodies that do not
+  /// move this step read as static (no velocity, infinite mass).
+  SolverBody view(int slot) const;
+  /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
+  /// `pose` (position passes).
+  void store(int slot, const SolverBody& view, bool pose);
+
+  /// Writes the moved poses and (dynamic) velocities of the entries [begin, end) back to the
+  /// bodies.
+  void finish(std::vector<Body>& bodies, int begin, int end) const;
+
+ private:
+  static constexpr int kSlotsPerBlock = 1024;
+  /// Fills the entry's rows; false for a body held still (see gather()).
+  bool add(const Body& body, int slot, int entry, const Vec2& gravity, double h, int substeps);
+
+  const std::vector<Body>* bodies_ = nullptr;
+  std::vector<BodyState> states_;
+  std::vector<BodySim> sims_;
+  std::vector<BodyLoad> loads_;  // dynamic entries only
+  std::vector<BodyStart> starts_;
+  std::vector<int> entryOfSlot_;  // -1 when the body has no row
+  std::vector<int> blockFirst_;   // gather(): each block's first dynamic and kinematic row
+  std::vector<std::vector<int>> overflowedOfBlock_;
+  std::vector<int> overflowed_;  // slots, in slot order
+  int dynamicCount_ = 0, movingCount_ = 0;
+};
+
+}  // namespace impulse2d

@@ -1,0 +1,78 @@
+// The sub-stepping solvers' SIMD kernels and threads (contact_kernels.cpp, step_workers.hpp):
+// the same scene gives bit-identical states on every instruction set the processor has (a lane
+// at a time on the portable target is the scalar reference) and on any number of threads.
+#include <gtest/gtest.h>
+#include <impulse2d/scene.hpp>
+#include <impulse2d/world.hpp>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "all_solvers.hpp"
+#include "contact_bundles.hpp"
+
+namespace impulse2d {
+namespace {
+
+// Scenes that exercise every kernel path: two-point manifolds in piles, one-point circles,
+// restitution, joints in the overflow, and bodies a colour cannot hold (a box touched by many).
+const char* const kScenes[] = {"test/scenes/pyramid20.yaml", "test/scenes/bounce.yaml",
+                               "test/scenes/bridge20.yaml", "test/determinism/canonical.yaml"};
+
+uint64_t runScene(const std::string& file, SolverType solver, int threads, int steps) {
+  Scene scene;
+  std::string error;
+  EXPECT_TRUE(loadSceneFile(std::string(IMPULSE2D_SOURCE_DIR) + "/" + file, &scene, &error))
+      << error;
+  scene.world.solver = solver;
+  scene.world.threads = threads;
+  scene.world.enableSleep = false;  // keep every body in the solver for the whole run
+  World world(scene.world);
+  EXPECT_TRUE(addScene(scene, world, &error)) << error;
+  for (int i = 0; i < steps; ++i) world.step();
+  return world.hash();
+}
+
+class WideSolver : public ::testing::TestWithParam<test::SolverCase> {};
+
+TEST_P(WideSolver, EveryInstructionSetGivesTheSameState) {
+  const std::vector<std::string> targets = contactKernelTargets();
+  ASSERT_FALSE(targets.empty());
+  for (const char* file : kScenes) {
+    std::vector<uint64_t> hashes;
+    for (const std::string& target : targets) {
+      ASSERT_TRUE(useContactKernelTarget(target)) << target;
+      ASSERT_EQ(std::string(contactKernelTarget()), target);
+      hashes.push_back(runScene(file, GetParam().type, 1, 150));
+    }
+    useContactKernelTarget("");
+    for (size_t i = 1; i < hashes.size(); ++i) {
+      EXPECT_EQ(hashes[i], hashes[0]) << file << ": " << targets[i] << " against " << targets[0];
+    }
+    std::printf("wide solver: %s %s: %zu instruction sets (%s ... %s), one state\n",
+                GetParam().name, file, targets.size(), targets.front().c_str(),
+                targets.back().c_str());
+  }
+}
+
+TEST_P(WideSolver, AnyNumberOfThreadsGivesTheSameState) {
+  for (const char* file : kScenes) {
+    const uint64_t one = runScene(file, GetParam().type, 1, 150);
+    for (const int threads : {2, 3, 4}) {
+      EXPECT_EQ(runScene(file, GetParam().type, threads, 150), one)
+          << file << " on " << threads << " threads";
+    }
+  }
+}
+
+TEST(WideSolver, AnUnknownInstructionSetIsRefused) {
+  EXPECT_FALSE(useContactKernelTarget("NEON_BF16"));
+  EXPECT_FALSE(contactKernelTargets().empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(AllSolvers, WideSolver, ::testing::ValuesIn(test::allSolvers()),
+                         test::SolverCaseName());
+
+}  // namespace
+}  // namespace impulse2d
