@@ -138,7 +138,7 @@ HWY_INLINE void storeRows(double* states, const int32_t* stored, int32_t sink, _
 
 HWY_INLINE void storeVelocities(D8 /*d*/, double* states, const int32_t* stored, int32_t sink,
                                 const Bodies<D8>& b) {
-  __m512d r[8] = {b.vx.raw, b.vy.raw, b.w.raw, b.turned.raw,
+  __m512d r[8] = {b.vx.raw, b.vy.raw, b.w.raw,  b.turned.raw,
                   b.dx.raw, b.dy.raw, b.qc.raw, b.qs.raw};
   storeRows(states, stored, sink, r);
 }

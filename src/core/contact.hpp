@@ -39,11 +39,11 @@ struct Contact {
   double restitution = 0.0;
   // The manifold as last computed by the narrow phase, in the bodies' frames, so that while the
   // pair barely moves it can be followed instead of computed again (updateContact).
-  bool following = false;  // the fields below describe `manifold`
-  Transform baseRelative;  // B's frame seen from A's when it was computed
-  Vec2 localNormal = Vec2::Zero();                      // in A's frame
-  Vec2 localA[2] = {Vec2::Zero(), Vec2::Zero()};         // each point's end on A, A's frame
-  Vec2 localB[2] = {Vec2::Zero(), Vec2::Zero()};         // and on B, B's frame
+  bool following = false;                         // the fields below describe `manifold`
+  Transform baseRelative;                         // B's frame seen from A's when it was computed
+  Vec2 localNormal = Vec2::Zero();                // in A's frame
+  Vec2 localA[2] = {Vec2::Zero(), Vec2::Zero()};  // each point's end on A, A's frame
+  Vec2 localB[2] = {Vec2::Zero(), Vec2::Zero()};  // and on B, B's frame
 };
 
 /// Friction mixes by geometric mean (a frictionless surface makes the pair frictionless);

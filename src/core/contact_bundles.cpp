@@ -40,8 +40,14 @@ LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, i
   const int entry = bodies.entryOf(slot);
   if (entry < 0) {  // static or asleep: the identity row, read only
     const Vec2& c = items[slot].center;
-    return {~static_cast<int32_t>(bodies.identityRow() * kStateDoubles), 0.0, 0.0, c.x(), c.y(),
-            0.0, 0.0, 0.0};
+    return {~static_cast<int32_t>(bodies.identityRow() * kStateDoubles),
+            0.0,
+            0.0,
+            c.x(),
+            c.y(),
+            0.0,
+            0.0,
+            0.0};
   }
   const BodySim& sim = bodies.sim(entry);
   const BodyState& s = bodies.states()[entry];
@@ -56,9 +62,9 @@ LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, i
           s.w};
 }
 
-void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorAy,
-              double anchorBx, double anchorBy, double baseSeparation, double normalMass,
-              double tangentMass, double normalImpulse, double tangentImpulse) {
+void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorAy, double anchorBx,
+              double anchorBy, double baseSeparation, double normalMass, double tangentMass,
+              double normalImpulse, double tangentImpulse) {
   BundlePoint& p = c.points[i];
   p.anchorAx[lane] = anchorAx;
   p.anchorAy[lane] = anchorAy;
@@ -105,8 +111,8 @@ void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOf
 }
 
 // One contact's lane, as the step begins.
-void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact,
-              const LaneBody& a, const LaneBody& b, int substeps, bool soft) {
+void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact, const LaneBody& a,
+              const LaneBody& b, int substeps, bool soft) {
   const Manifold& m = contact.manifold;
   c.offsetA[lane] = a.offset;
   c.offsetB[lane] = b.offset;
@@ -142,12 +148,11 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
     const double tangentArmA = aAx * nx + aAy * ny, tangentArmB = aBx * nx + aBy * ny;
     const double normalK = mass + a.invInertia * normalArmA[i] * normalArmA[i] +
                            b.invInertia * normalArmB[i] * normalArmB[i];
-    const double tangentK = mass + a.invInertia * tangentArmA * tangentArmA +
-                            b.invInertia * tangentArmB * tangentArmB;
+    const double tangentK =
+        mass + a.invInertia * tangentArmA * tangentArmA + b.invInertia * tangentArmB * tangentArmB;
     maxShift = std::min({maxShift, shiftWithin(a, b, normalK, normalArmA[i], normalArmB[i]),
                          shiftWithin(a, b, tangentK, tangentArmA, tangentArmB)});
-    setPoint(c, i, lane, aAx, aAy, aBx, aBy,
-             mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
+    setPoint(c, i, lane, aAx, aAy, aBx, aBy, mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
              normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
              contact.normalImpulse[i] / substeps, contact.tangentImpulse[i] / substeps);
     // Normal speed of B relative to A at the point: v + w x r of each.
@@ -197,16 +202,16 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
   laneOf_.resize(contacts.size());
   colorOf_.resize(contacts.size());
   jointColor_.resize(jointSlots.size());
-  int count[kOverflow + 1] = {};      // constraints, joints and contacts
+  int count[kOverflow + 1] = {};  // constraints, joints and contacts
   int jointCount[kOverflow + 1] = {};
   auto dynamicEntry = [&](int slot) {
     const int entry = bodies.entryOf(slot);
     return bodies.isDynamicEntry(entry) ? entry : -1;
   };
   for (size_t k = 0; k < jointSlots.size(); ++k) {
-    const int color = coloring.assign(dynamicEntry(jointBodies[k].first),
-                                      dynamicEntry(jointBodies[k].second),
-                                      startColor(static_cast<uint64_t>(jointSlots[k]) << 32));
+    const int color =
+        coloring.assign(dynamicEntry(jointBodies[k].first), dynamicEntry(jointBodies[k].second),
+                        startColor(static_cast<uint64_t>(jointSlots[k]) << 32));
     jointColor_[k] = color == ConstraintColoring::kOverflow ? kOverflow : color;
     ++count[jointColor_[k]];
     ++jointCount[jointColor_[k]];
@@ -282,7 +287,8 @@ void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies)
   for (int k = begin; k < end; ++k) {
     ContactBundle& c = bundles_[k];
     BundleExtra& e = extras_[k];
-    for (int lane = c.laneCount; lane < kBundleLanes; ++lane) setEmptyLane(c, e, lane, identityOffset);
+    for (int lane = c.laneCount; lane < kBundleLanes; ++lane)
+      setEmptyLane(c, e, lane, identityOffset);
     uint8_t any = 0;
     for (int lane = 0; lane < c.laneCount; ++lane) any |= c.laneFlags[lane];
     c.anySequential = (any & kSequentialLane) != 0;

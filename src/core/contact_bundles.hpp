@@ -39,8 +39,8 @@ constexpr int kBundleLanes = 8;
 enum : uint8_t { kSequentialLane = 1, kRestitutionLane = 2, kAgainstStaticLane = 4 };
 
 struct BundlePoint {
-  double anchorAx[kBundleLanes], anchorAy[kBundleLanes];  // m, from A's centre of mass
-  double anchorBx[kBundleLanes], anchorBy[kBundleLanes];  // m, from B's centre of mass
+  double anchorAx[kBundleLanes], anchorAy[kBundleLanes];             // m, from A's centre of mass
+  double anchorBx[kBundleLanes], anchorBy[kBundleLanes];             // m, from B's centre of mass
   double normalImpulse[kBundleLanes], tangentImpulse[kBundleLanes];  // N s, accumulated
 };
 
@@ -66,7 +66,7 @@ struct ContactBundle {
   float baseSeparation[2][kBundleLanes];  // m, the separation minus n . (aB - aA): see above
   float normalMass[2][kBundleLanes], tangentMass[2][kBundleLanes];  // kg; 0: an absent point
   alignas(64) int laneCount;
-  bool anySequential;   // of the lanes, summed up by finishFill()
+  bool anySequential;  // of the lanes, summed up by finishFill()
   bool anyRestitution;
   uint8_t laneFlags[kBundleLanes];  // kSequentialLane | kRestitutionLane | kAgainstStaticLane
   // m, the largest shift of the lever arms (half the relative move along n and along t) for

@@ -50,7 +50,7 @@ template <class D>
 struct Frame {
   V<D> nx, ny, tx, ty;
   V<D> mA, iA, mB, iB;
-  V<D> moveX, moveY;       // dB - dA
+  V<D> moveX, moveY;          // dB - dA
   V<D> halfMoveN, halfMoveT;  // cross(dB - dA, n) / 2 and cross(dB - dA, t) / 2
 };
 
@@ -70,10 +70,12 @@ HWY_INLINE Frame<D> frame(D d, const ContactBundle& c, size_t lane, const Bodies
   f.moveY = hn::Sub(b.dy, a.dy);
   const V<D> half = hn::Set(d, 0.5);
   const V<D> limit = loadFloat(d, c.maxShift + lane), negLimit = hn::Neg(limit);
-  f.halfMoveN = hn::Min(hn::Max(hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ny), hn::Mul(f.moveY, f.nx))),
-                                negLimit), limit);
-  f.halfMoveT = hn::Min(hn::Max(hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ty), hn::Mul(f.moveY, f.tx))),
-                                negLimit), limit);
+  f.halfMoveN = hn::Min(
+      hn::Max(hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ny), hn::Mul(f.moveY, f.nx))), negLimit),
+      limit);
+  f.halfMoveT = hn::Min(
+      hn::Max(hn::Mul(half, hn::Sub(hn::Mul(f.moveX, f.ty), hn::Mul(f.moveY, f.tx))), negLimit),
+      limit);
   return f;
 }
 
@@ -116,9 +118,10 @@ HWY_INLINE V<D> separation(D d, const ContactBundle& c, int i, size_t lane, cons
 template <class D>
 HWY_INLINE V<D> rowSpeed(const Bodies<D>& a, const Bodies<D>& b, const V<D>& dx, const V<D>& dy,
                          const V<D>& armA, const V<D>& armB) {
-  return hn::Sub(hn::Add(hn::Add(hn::Mul(dx, hn::Sub(b.vx, a.vx)), hn::Mul(dy, hn::Sub(b.vy, a.vy))),
-                         hn::Mul(b.w, armB)),
-                 hn::Mul(a.w, armA));
+  return hn::Sub(
+      hn::Add(hn::Add(hn::Mul(dx, hn::Sub(b.vx, a.vx)), hn::Mul(dy, hn::Sub(b.vy, a.vy))),
+              hn::Mul(b.w, armB)),
+      hn::Mul(a.w, armA));
 }
 
 // The impulse `amount` along (dx, dy) on B at the point, and its reaction on A.
@@ -142,12 +145,12 @@ HWY_INLINE void applyNormals(Bodies<D>* a, Bodies<D>* b, const Frame<D>& f, cons
   const V<D> pa = hn::Mul(f.mA, sum), pb = hn::Mul(f.mB, sum);
   a->vx = hn::Sub(a->vx, hn::Mul(pa, f.nx));
   a->vy = hn::Sub(a->vy, hn::Mul(pa, f.ny));
-  a->w = hn::Sub(a->w, hn::Mul(f.iA, hn::Add(hn::Mul(r1.normalA, amount1),
-                                             hn::Mul(r2.normalA, amount2))));
+  a->w = hn::Sub(
+      a->w, hn::Mul(f.iA, hn::Add(hn::Mul(r1.normalA, amount1), hn::Mul(r2.normalA, amount2))));
   b->vx = hn::Add(b->vx, hn::Mul(pb, f.nx));
   b->vy = hn::Add(b->vy, hn::Mul(pb, f.ny));
-  b->w = hn::Add(b->w, hn::Mul(f.iB, hn::Add(hn::Mul(r1.normalB, amount1),
-                                             hn::Mul(r2.normalB, amount2))));
+  b->w = hn::Add(
+      b->w, hn::Mul(f.iB, hn::Add(hn::Mul(r1.normalB, amount1), hn::Mul(r2.normalB, amount2))));
 }
 
 // Both normal rows of a lane at once: the 2x2 LCP of the accumulated impulses x (old: x0),
@@ -163,19 +166,21 @@ struct Block {
 };
 
 template <class D>
-HWY_INLINE void solveBlock(D d, const Block<D>& k, const V<D>& v1, const V<D>& v2,
-                           const V<D>& old1, const V<D>& old2, V<D>* x1, V<D>* x2) {
+HWY_INLINE void solveBlock(D d, const Block<D>& k, const V<D>& v1, const V<D>& v2, const V<D>& old1,
+                           const V<D>& old2, V<D>* x1, V<D>* x2) {
   const V<D> zero = hn::Zero(d);
   const V<D> both1 = hn::Sub(old1, hn::Add(hn::Mul(k.inverse11, v1), hn::Mul(k.inverse12, v2)));
   const V<D> both2 = hn::Sub(old2, hn::Add(hn::Mul(k.inverse12, v1), hn::Mul(k.inverse22, v2)));
   const auto both = hn::And(hn::Ge(both1, zero), hn::Ge(both2, zero));
   // Only the first: x2 = 0.
   const V<D> first = hn::Sub(old1, hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))));
-  const V<D> w2 = hn::Sub(hn::Mul(k.mass2, hn::Add(v2, hn::Mul(k.k12, hn::Sub(first, old1)))), old2);
+  const V<D> w2 =
+      hn::Sub(hn::Mul(k.mass2, hn::Add(v2, hn::Mul(k.k12, hn::Sub(first, old1)))), old2);
   const auto onlyFirst = hn::And(hn::Ge(first, zero), hn::Ge(w2, zero));
   // Only the second: x1 = 0.
   const V<D> second = hn::Sub(old2, hn::Mul(k.mass2, hn::Sub(v2, hn::Mul(k.k12, old1))));
-  const V<D> w1 = hn::Sub(hn::Mul(k.mass1, hn::Add(v1, hn::Mul(k.k12, hn::Sub(second, old2)))), old1);
+  const V<D> w1 =
+      hn::Sub(hn::Mul(k.mass1, hn::Add(v1, hn::Mul(k.k12, hn::Sub(second, old2)))), old1);
   const auto onlySecond = hn::And(hn::Ge(second, zero), hn::Ge(w1, zero));
   // Neither.
   const V<D> rest1 = hn::Sub(hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))), old1);
@@ -183,26 +188,27 @@ HWY_INLINE void solveBlock(D d, const Block<D>& k, const V<D>& v1, const V<D>& v
   const auto none = hn::And(hn::Ge(rest1, zero), hn::Ge(rest2, zero));
   const auto fits = hn::Or(hn::Or(both, onlyFirst), hn::Or(onlySecond, none));
   const V<D> new1 = hn::IfThenElse(both, both1, hn::IfThenElseZero(onlyFirst, first));
-  const V<D> new2 = hn::IfThenElse(
-      both, both2, hn::IfThenElseZero(hn::AndNot(onlyFirst, onlySecond), second));
+  const V<D> new2 =
+      hn::IfThenElse(both, both2, hn::IfThenElseZero(hn::AndNot(onlyFirst, onlySecond), second));
   *x1 = hn::IfThenElse(fits, new1, old1);
   *x2 = hn::IfThenElse(fits, new2, old2);
 }
 
 // Friction rows of both points, clamped to the cone of their current normal impulses.
 template <class D>
-HWY_INLINE void solveFriction(D d, ContactBundle& c, BundleExtra& extra, size_t lane,
-                              bool relax, const Frame<D>& f, const Arms<D> (&r)[2],
-                              Bodies<D>* a, Bodies<D>* b) {
+HWY_INLINE void solveFriction(D d, ContactBundle& c, BundleExtra& extra, size_t lane, bool relax,
+                              const Frame<D>& f, const Arms<D> (&r)[2], Bodies<D>* a,
+                              Bodies<D>* b) {
   const V<D> friction = loadFloat(d, c.friction + lane);
   for (int i = 0; i < 2; ++i) {
     BundlePoint& p = c.points[i];
     const V<D> vt = rowSpeed(*a, *b, f.tx, f.ty, r[i].tangentA, r[i].tangentB);
     const V<D> old = hn::Load(d, p.tangentImpulse + lane);
     const V<D> maxFriction = hn::Mul(friction, hn::Load(d, p.normalImpulse + lane));
-    const V<D> total = hn::Min(hn::Max(hn::Sub(old, hn::Mul(loadFloat(d, c.tangentMass[i] + lane), vt)),
-                                       hn::Neg(maxFriction)),
-                               maxFriction);
+    const V<D> total =
+        hn::Min(hn::Max(hn::Sub(old, hn::Mul(loadFloat(d, c.tangentMass[i] + lane), vt)),
+                        hn::Neg(maxFriction)),
+                maxFriction);
     applyRow(a, b, f, f.tx, f.ty, r[i].tangentA, r[i].tangentB, hn::Sub(total, old));
     hn::Store(total, d, p.tangentImpulse + lane);
     if (relax) {
@@ -226,7 +232,8 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
   const V<D> inverseH = hn::Set(d, pass.inverseH);
   BundlePoint& p1 = c.points[0];
   BundlePoint& p2 = c.points[1];
-  const V<D> old1 = hn::Load(d, p1.normalImpulse + lane), old2 = hn::Load(d, p2.normalImpulse + lane);
+  const V<D> old1 = hn::Load(d, p1.normalImpulse + lane),
+             old2 = hn::Load(d, p2.normalImpulse + lane);
   const V<D> linear =
       hn::Add(hn::Mul(f.nx, hn::Sub(b->vx, a->vx)), hn::Mul(f.ny, hn::Sub(b->vy, a->vy)));
   const V<D> vn[2] = {
@@ -238,8 +245,8 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
       hn::Store(hn::Min(hn::Load(d, approach), vn[i]), d, approach);
     }
   }
-  Block<D> k{loadFloat(d, c.k12 + lane),      loadFloat(d, c.inverse11 + lane),
-             loadFloat(d, c.inverse12 + lane), loadFloat(d, c.inverse22 + lane),
+  Block<D> k{loadFloat(d, c.k12 + lane),           loadFloat(d, c.inverse11 + lane),
+             loadFloat(d, c.inverse12 + lane),     loadFloat(d, c.inverse22 + lane),
              loadFloat(d, c.normalMass[0] + lane), loadFloat(d, c.normalMass[1] + lane)};
   V<D> v[2];
   if (!pass.useBias) {
@@ -260,8 +267,8 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
       const auto apart = hn::Gt(s[i], zero);
       const V<D> kii = hn::Load(d, extra.k[i] + lane);
       const V<D> gamma = hn::IfThenElseZero(hn::Not(apart), hn::Mul(kii, spring));
-      const V<D> bias = hn::IfThenElse(apart, hn::Mul(s[i], inverseH),
-                                       hn::Max(hn::Mul(rate, s[i]), maxPush));
+      const V<D> bias =
+          hn::IfThenElse(apart, hn::Mul(s[i], inverseH), hn::Max(hn::Mul(rate, s[i]), maxPush));
       v[i] = hn::Add(hn::Add(vn[i], bias), hn::Mul(gamma, olds[i]));
       diagonal[i] = hn::Add(kii, gamma);
     }
@@ -270,8 +277,11 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
     const V<D> det = hn::IfThenElse(
         twoPoints, hn::Sub(hn::Mul(diagonal[0], diagonal[1]), hn::Mul(k.k12, k.k12)), one);
     const V<D> inverseDet = hn::Div(one, det);
-    k.mass1 = hn::IfThenElseZero(hn::Gt(k.mass1, zero), hn::Div(one, hn::IfThenElse(hn::Gt(k.mass1, zero), diagonal[0], one)));
-    k.mass2 = hn::IfThenElseZero(twoPoints, hn::Div(one, hn::IfThenElse(twoPoints, diagonal[1], one)));
+    k.mass1 =
+        hn::IfThenElseZero(hn::Gt(k.mass1, zero),
+                           hn::Div(one, hn::IfThenElse(hn::Gt(k.mass1, zero), diagonal[0], one)));
+    k.mass2 =
+        hn::IfThenElseZero(twoPoints, hn::Div(one, hn::IfThenElse(twoPoints, diagonal[1], one)));
     k.inverse11 = hn::IfThenElse(twoPoints, hn::Mul(diagonal[1], inverseDet), k.mass1);
     k.inverse12 = hn::IfThenElseZero(twoPoints, hn::Neg(hn::Mul(k.k12, inverseDet)));
     k.inverse22 = hn::IfThenElseZero(twoPoints, hn::Mul(diagonal[0], inverseDet));
@@ -363,13 +373,14 @@ HWY_INLINE void restituteGroup(D d, const BundlePass& pass, ContactBundle& c, Bu
     const V<D> approach = hn::Load(d, extra.approach[i] + lane);
     const V<D> old = hn::Load(d, p.normalImpulse + lane);
     // Only points that pushed: a speculative point the bodies never reached does not bounce.
-    const auto bounces = hn::And(
-        hn::And(hn::Gt(restitution, zero), hn::Lt(approach, hn::Set(d, -pass.restitutionThreshold))),
-        hn::Gt(hn::Max(old, hn::Load(d, extra.maxNormalImpulse[i] + lane)), zero));
+    const auto bounces =
+        hn::And(hn::And(hn::Gt(restitution, zero),
+                        hn::Lt(approach, hn::Set(d, -pass.restitutionThreshold))),
+                hn::Gt(hn::Max(old, hn::Load(d, extra.maxNormalImpulse[i] + lane)), zero));
     const V<D> vn = rowSpeed(a, b, f.nx, f.ny, r.normalA, r.normalB);
     const V<D> target = hn::Neg(hn::Mul(restitution, approach));
-    const V<D> total =
-        hn::Max(hn::Sub(old, hn::Mul(loadFloat(d, c.normalMass[i] + lane), hn::Sub(vn, target))), zero);
+    const V<D> total = hn::Max(
+        hn::Sub(old, hn::Mul(loadFloat(d, c.normalMass[i] + lane), hn::Sub(vn, target))), zero);
     const V<D> delta = hn::IfThenElseZero(bounces, hn::Sub(total, old));
     hn::Store(hn::Add(old, delta), d, p.normalImpulse + lane);
     double* sum = extra.totalNormalImpulse[i] + lane;
@@ -387,12 +398,16 @@ HWY_INLINE void turn(D d, const V<D>& angle, V<D>* qc, V<D>* qs) {
   if (hn::AllTrue(d, hn::Lt(hn::Abs(angle), hn::Set(d, kSmallTurn)))) {
     const V<D> a2 = hn::Mul(angle, angle);
     const V<D> one = hn::Set(d, 1.0);
-    c = hn::Sub(one, hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 2.0),
-                                         hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 24.0),
-                                                             hn::Mul(a2, hn::Set(d, 1.0 / 720.0)))))));
-    s = hn::Mul(angle, hn::Sub(one, hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 6.0),
-                                                        hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 120.0),
-                                                                            hn::Mul(a2, hn::Set(d, 1.0 / 5040.0))))))));
+    c = hn::Sub(one,
+                hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 2.0),
+                                    hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 24.0),
+                                                        hn::Mul(a2, hn::Set(d, 1.0 / 720.0)))))));
+    s = hn::Mul(
+        angle,
+        hn::Sub(one,
+                hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 6.0),
+                                    hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 120.0),
+                                                        hn::Mul(a2, hn::Set(d, 1.0 / 5040.0))))))));
   } else {
     HWY_ALIGN double lanes[kBundleLanes], cs[kBundleLanes], ss[kBundleLanes];
     hn::Store(angle, d, lanes);
@@ -434,12 +449,15 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
     // + aA - aB).
     const V<D> gapX = hn::Add(hn::Sub(hn::Add(f.moveX, turnedBx), turnedAx), hn::Sub(ax, bx));
     const V<D> gapY = hn::Add(hn::Sub(hn::Add(f.moveY, turnedBy), turnedAy), hn::Sub(ay, by));
-    const V<D> rAx = hn::Add(turnedAx, hn::Mul(half, gapX)), rAy = hn::Add(turnedAy, hn::Mul(half, gapY));
-    const V<D> rBx = hn::Sub(turnedBx, hn::Mul(half, gapX)), rBy = hn::Sub(turnedBy, hn::Mul(half, gapY));
+    const V<D> rAx = hn::Add(turnedAx, hn::Mul(half, gapX)),
+               rAy = hn::Add(turnedAy, hn::Mul(half, gapY));
+    const V<D> rBx = hn::Sub(turnedBx, hn::Mul(half, gapX)),
+               rBy = hn::Sub(turnedBy, hn::Mul(half, gapY));
     rnA[i] = hn::Sub(hn::Mul(rAx, f.ny), hn::Mul(rAy, f.nx));
     rnB[i] = hn::Sub(hn::Mul(rBx, f.ny), hn::Mul(rBy, f.nx));
     correction[i] = hn::IfThenElseZero(
-        present, hn::Min(hn::Max(hn::Mul(hn::Set(d, pass.baumgarte), hn::Add(s, hn::Set(d, pass.linearSlop))),
+        present, hn::Min(hn::Max(hn::Mul(hn::Set(d, pass.baumgarte),
+                                         hn::Add(s, hn::Set(d, pass.linearSlop))),
                                  hn::Set(d, -pass.maxLinearCorrection)),
                          zero));
   }
@@ -447,27 +465,36 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
     return deepest;  // every point within the slop
   }
   const V<D> m = hn::Add(f.mA, f.mB);
-  const V<D> k11 = hn::Add(m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[0])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[0]))));
-  const V<D> k22 = hn::Add(m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[1], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[1], rnB[1]))));
-  const V<D> k12 = hn::Add(m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[1]))));
+  const V<D> k11 = hn::Add(
+      m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[0])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[0]))));
+  const V<D> k22 = hn::Add(
+      m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[1], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[1], rnB[1]))));
+  const V<D> k12 = hn::Add(
+      m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[1]))));
   const V<D> one = hn::Set(d, 1.0);
   const auto twoPoints = hn::Gt(loadFloat(d, c.normalMass[1] + lane), zero);
   const auto positive1 = hn::Gt(k11, zero), positive2 = hn::Gt(k22, zero);
-  const V<D> mass1 = hn::IfThenElseZero(positive1, hn::Div(one, hn::IfThenElse(positive1, k11, one)));
-  const V<D> mass2 = hn::IfThenElseZero(positive2, hn::Div(one, hn::IfThenElse(positive2, k22, one)));
+  const V<D> mass1 =
+      hn::IfThenElseZero(positive1, hn::Div(one, hn::IfThenElse(positive1, k11, one)));
+  const V<D> mass2 =
+      hn::IfThenElseZero(positive2, hn::Div(one, hn::IfThenElse(positive2, k22, one)));
   const V<D> det = hn::Sub(hn::Mul(k11, k22), hn::Mul(k12, k12));
   // As contact_math.hpp's wellConditioned: k11^2 < 1000 det.
-  const auto block = hn::And(twoPoints, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, 1000.0), det)));
+  const auto block =
+      hn::And(twoPoints, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, 1000.0), det)));
   const V<D> inverseDet = hn::Div(one, hn::IfThenElse(block, det, one));
   // Pushes x >= 0 with K x + correction >= 0, complementary: the block from no push at all.
   V<D> x1, x2;
-  solveBlock(d, Block<D>{k12, hn::Mul(k22, inverseDet), hn::Neg(hn::Mul(k12, inverseDet)),
-                         hn::Mul(k11, inverseDet), mass1, mass2},
+  solveBlock(d,
+             Block<D>{k12, hn::Mul(k22, inverseDet), hn::Neg(hn::Mul(k12, inverseDet)),
+                      hn::Mul(k11, inverseDet), mass1, mass2},
              correction[0], correction[1], zero, zero, &x1, &x2);
   // One point, or a pair too degenerate for the block: the deeper point alone.
   const auto deeper1 = hn::Le(correction[0], correction[1]);
-  const V<D> alone1 = hn::IfThenElseZero(hn::Or(hn::Not(twoPoints), deeper1), hn::Neg(hn::Mul(correction[0], mass1)));
-  const V<D> alone2 = hn::IfThenElseZero(hn::AndNot(deeper1, twoPoints), hn::Neg(hn::Mul(correction[1], mass2)));
+  const V<D> alone1 = hn::IfThenElseZero(hn::Or(hn::Not(twoPoints), deeper1),
+                                         hn::Neg(hn::Mul(correction[0], mass1)));
+  const V<D> alone2 =
+      hn::IfThenElseZero(hn::AndNot(deeper1, twoPoints), hn::Neg(hn::Mul(correction[1], mass2)));
   x1 = hn::IfThenElse(block, x1, alone1);
   x2 = hn::IfThenElse(block, x2, alone2);
   const V<D> sum = hn::Add(x1, x2);
@@ -507,9 +534,8 @@ HWY_INLINE void forEachGroup(const BundlePass& pass, int begin, int end, bool on
 }
 
 void WarmStartBundles(const BundlePass& pass, int begin, int end, bool oneByOne) {
-  forEachGroup(pass, begin, end, oneByOne, [&](auto d, int k, size_t lane) {
-    warmStartGroup(d, pass, pass.bundles[k], lane);
-  });
+  forEachGroup(pass, begin, end, oneByOne,
+               [&](auto d, int k, size_t lane) { warmStartGroup(d, pass, pass.bundles[k], lane); });
 }
 
 void SolveBundles(const BundlePass& pass, int begin, int end, bool oneByOne) {
@@ -520,7 +546,8 @@ void SolveBundles(const BundlePass& pass, int begin, int end, bool oneByOne) {
 
 void RestituteBundles(const BundlePass& pass, int begin, int end, bool oneByOne) {
   forEachGroup(pass, begin, end, oneByOne, [&](auto d, int k, size_t lane) {
-    if (pass.bundles[k].anyRestitution) restituteGroup(d, pass, pass.bundles[k], pass.extras[k], lane);
+    if (pass.bundles[k].anyRestitution)
+      restituteGroup(d, pass, pass.bundles[k], pass.extras[k], lane);
   });
 }
 

@@ -96,8 +96,8 @@ void WorldImpl::solveContinuous() {
           if (enter > 0.0 && enter <= 1.0) impact = std::min(impact, enter);
           const double allowed = std::max(2.0 * def.linearSlop,
                                           0.25 * std::min(innerRadius(otherShape), body.minExtent));
-          impact = std::min(impact, turnIntoContact(shape, sweep, otherShape, other.xf, allowed,
-                                                  def.linearSlop));
+          impact = std::min(
+              impact, turnIntoContact(shape, sweep, otherShape, other.xf, allowed, def.linearSlop));
         }
       }
     });

@@ -88,7 +88,9 @@ bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravi
     // the step would take it faster than across the whole world. It stands still with infinite
     // mass for the step, before any impulse, and is removed at its end (world_bounds.cpp).
     const double maxSpeed = kWorldExtent / (h * substeps);
-    auto fits = [&](double v, double dv) { return std::abs(v) + substeps * std::abs(dv) <= maxSpeed; };
+    auto fits = [&](double v, double dv) {
+      return std::abs(v) + substeps * std::abs(dv) <= maxSpeed;
+    };
     if (!(fits(state.vx, load.dvx) && fits(state.vy, load.dvy) && fits(state.w, load.dw))) {
       state.vx = state.vy = state.w = 0.0;
       sim.invMass = sim.invInertia = 0.0;

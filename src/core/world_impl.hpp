@@ -92,7 +92,7 @@ struct WorldImpl {
   std::vector<int> movedProxies;
   std::vector<char> proxyMoved;  // by proxy id
 
-  std::vector<Contact> contacts;                   // solved in this order
+  std::vector<Contact> contacts;             // solved in this order
   std::unordered_set<uint64_t> contactKeys;  // the keys of `contacts`: a pair is found once
   // Reused buffers of findNewContacts, so the step allocates nothing once warm.
   std::vector<std::pair<int, int>> newPairs;
@@ -106,11 +106,11 @@ struct WorldImpl {
   ContactBundles contactBundles;
   StepWorkers stepWorkers;
   std::vector<std::pair<int, int>> activeJointBodies;  // by active joint: its bodies' slots
-  std::vector<Joint> solverJoints;  // this step's active joints, by colour (copies)
-  std::vector<int> jointStart;      // colour c's in solverJoints: [jointStart[c], [c + 1])
-  std::vector<char> workerJointsOk;    // the NGS pass's verdicts, by worker
+  std::vector<Joint> solverJoints;   // this step's active joints, by colour (copies)
+  std::vector<int> jointStart;       // colour c's in solverJoints: [jointStart[c], [c + 1])
+  std::vector<char> workerJointsOk;  // the NGS pass's verdicts, by worker
   std::vector<double> workerDeepest;
-  std::vector<uint8_t> contactFates;   // the narrow phase's verdict, by contact
+  std::vector<uint8_t> contactFates;                      // the narrow phase's verdict, by contact
   std::vector<std::vector<std::pair<int, Aabb>>> refits;  // proxies that left their fat boxes
   // Reused buffers of the island pass (island_sleep.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
@@ -119,7 +119,7 @@ struct WorldImpl {
     double startAngle;
   };
   std::vector<FastBody> fastBodies;
-  std::vector<int> activeJoints;    // joints with an awake dynamic body, this step
+  std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
   double time = 0.0;
   uint64_t steps = 0;

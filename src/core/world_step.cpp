@@ -14,16 +14,16 @@ void World::step() {
   const double dt = w.def.timeStep;
   w.stepWorkers.setThreads(w.def.threads);
   w.stepWorkers.session([&] {  // the step's threads, for each stage that has parallel blocks
-    w.updateBroadPhase();  // 1. refit the fat boxes of bodies that left them
-    w.findNewContacts();   // 2. newly overlapping pairs become arbiters
-    w.updateContacts();    // 3. narrow phase; keep the impulses of matching contact ids
+    w.updateBroadPhase();      // 1. refit the fat boxes of bodies that left them
+    w.findNewContacts();       // 2. newly overlapping pairs become arbiters
+    w.updateContacts();        // 3. narrow phase; keep the impulses of matching contact ids
     if (usesSubsteps(w.def.solver)) {
       w.solveSubsteps(dt);  // 4-6 in sub-steps, and 8 (world_substeps.cpp)
     } else {
       w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
-      w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
-      w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
-      w.integratePositions(dt);   // 6. move with the solved velocities
+      w.integrateVelocities(dt);                              // 4. gravity, applied forces, damping
+      w.solve(dt);               // 5. pre-step, warm start, velocity iterations, restitution
+      w.integratePositions(dt);  // 6. move with the solved velocities
       w.solverBodies.storeMotion(w.bodies.items);
     }
     w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
@@ -133,7 +133,8 @@ void WorldImpl::updateContacts() {
   enum : uint8_t { kKeep = 0, kDrop = 1, kWakeA = 2, kWakeB = 4 };
   std::vector<uint8_t>& contactFate = contactFates;
   contactFate.resize(contacts.size());
-  const int blocks = static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
+  const int blocks =
+      static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
   stepWorkers.stage(blocks, [&](int block, int) {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
     const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
@@ -175,7 +176,6 @@ void WorldImpl::updateContacts() {
   for (const int proxy : movedProxies) proxyMoved[proxy] = 0;
   movedProxies.clear();
 }
-
 
 void WorldImpl::integrateVelocities(double dt) {
   // Faster than this, a body crosses the whole world within the step: it cannot be simulated.

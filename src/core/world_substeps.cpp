@@ -41,7 +41,6 @@ constexpr int kJointsPerBlock = 32;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
-
 }  // namespace
 
 void WorldImpl::onJoint(int index, int worker, const JointOp& op, bool pose) {
@@ -52,8 +51,8 @@ void WorldImpl::onJoint(int index, int worker, const JointOp& op, bool pose) {
   substepBodies.store(joint.bodyB, b, pose);
 }
 
-void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
-                           const BundlePass& pass, bool pose) {
+void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
+                           bool pose) {
   SubstepBodies& sb = substepBodies;
   const int colors = contactBundles.colorCount();
   // The joints first, colour after colour and then their overflow, and the contacts after them:
@@ -63,12 +62,13 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
   if (jointOp) {
     for (int color = 0; color < colors; ++color) {
       const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
-      stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock), [&](int block, int worker) {
-        const int from = firstJoint + block * kJointsPerBlock;
-        for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
-          onJoint(k, worker, jointOp, pose);
-        }
-      });
+      stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock),
+                        [&](int block, int worker) {
+                          const int from = firstJoint + block * kJointsPerBlock;
+                          for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
+                            onJoint(k, worker, jointOp, pose);
+                          }
+                        });
     }
     for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) onJoint(k, 0, jointOp, pose);
   }
@@ -102,8 +102,8 @@ void WorldImpl::solveSubsteps(double dt) {
   for (size_t j = 0; j < joints.items.size(); ++j) {
     if (!joints.alive[j]) continue;
     Joint& joint = joints.items[j];
-    const bool moves = sb.isDynamicEntry(sb.entryOf(joint.bodyA)) ||
-                       sb.isDynamicEntry(sb.entryOf(joint.bodyB));
+    const bool moves =
+        sb.isDynamicEntry(sb.entryOf(joint.bodyA)) || sb.isDynamicEntry(sb.entryOf(joint.bodyB));
     if (!moves) continue;
     activeJoints.push_back(static_cast<int>(j));
     activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
@@ -118,7 +118,8 @@ void WorldImpl::solveSubsteps(double dt) {
   solverJoints.clear();
   jointStart.assign(1, 0);
   for (int color = 0; color <= contactBundles.colorCount(); ++color) {
-    for (const int slot : contactBundles.jointsOf(color)) solverJoints.push_back(joints.items[slot]);
+    for (const int slot : contactBundles.jointsOf(color))
+      solverJoints.push_back(joints.items[slot]);
     jointStart.push_back(static_cast<int>(solverJoints.size()));
   }
 
@@ -168,8 +169,8 @@ void WorldImpl::solveSubsteps(double dt) {
   const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
   stepWorkers.stage(fillBlocks, [&](int block, int) {
     const int begin = block * 8 * kBundlesPerBlock;
-    contactBundles.finishFill(begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock),
-                              sb);
+    contactBundles.finishFill(
+        begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb);
   });
   for (int substep = 0; substep < substeps; ++substep) {
     stepWorkers.stage(dynamicBlocks, [&](int block, int) {

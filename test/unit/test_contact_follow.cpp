@@ -66,9 +66,10 @@ TEST(ContactFollow, FollowedManifoldMatchesTheComputedOne) {
         int j = 0;
         while (j < fresh.pointCount && fresh.points[j].id != contact.manifold.points[i].id) ++j;
         ASSERT_LT(j, fresh.pointCount) << "trial " << trial << ": a feature changed";
-        worstSeparation = std::max(
-            worstSeparation, std::abs(contact.manifold.points[i].separation - fresh.points[j].separation));
-        worstPoint = std::max(worstPoint, (contact.manifold.points[i].point - fresh.points[j].point).norm());
+        worstSeparation = std::max(worstSeparation, std::abs(contact.manifold.points[i].separation -
+                                                             fresh.points[j].separation));
+        worstPoint =
+            std::max(worstPoint, (contact.manifold.points[i].point - fresh.points[j].point).norm());
       }
       ++followed;
     }
@@ -78,8 +79,9 @@ TEST(ContactFollow, FollowedManifoldMatchesTheComputedOne) {
   EXPECT_LT(worstSeparation, 1e-6);
   EXPECT_LT(worstNormal, 1e-3);
   EXPECT_LT(worstPoint, kFollowDistance);
-  std::printf("contact follow: %d followed manifolds: separation %.2e m, normal %.2e, point %.2e m\n",
-              followed, worstSeparation, worstNormal, worstPoint);
+  std::printf(
+      "contact follow: %d followed manifolds: separation %.2e m, normal %.2e, point %.2e m\n",
+      followed, worstSeparation, worstNormal, worstPoint);
 }
 
 TEST(ContactFollow, ALargerMoveComputesTheManifoldAgain) {

@@ -167,9 +167,9 @@ TEST(Continuous, SpinningRodsNeverEndUpBelowThinGround) {
   }
 }
 
-// A body resting over two slops deep and turning fast (a ragdoll's forearm on the ground in v3_rain)
-// is swept from a pose already as deep as the continuous pass allows. It must still move: put back
-// at its start every step, it stood frozen with its velocity while its joints tore open.
+// A body resting over two slops deep and turning fast (a ragdoll's forearm on the ground in
+// v3_rain) is swept from a pose already as deep as the continuous pass allows. It must still move:
+// put back at its start every step, it stood frozen with its velocity while its joints tore open.
 TEST(Continuous, ATurningBodyRestingDeepIsNotHeldAtItsStart) {
   for (SolverType solver : kAllSolvers) {
     SCOPED_TRACE(solverName(solver));
