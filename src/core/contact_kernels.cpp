@@ -97,19 +97,35 @@ HWY_INLINE Arms<D> arms(D d, const BundlePoint& p, size_t lane, const Frame<D>& 
   return r;
 }
 
+// A point's anchors (from each centre of mass, as the step began) and the same turned with their
+// bodies since.
+template <class D>
+struct Anchors {
+  V<D> ax, ay, bx, by;
+  V<D> turnedAx, turnedAy, turnedBx, turnedBy;
+};
+
+template <class D>
+HWY_INLINE Anchors<D> anchors(D d, const BundlePoint& p, size_t lane, const Bodies<D>& a,
+                              const Bodies<D>& b) {
+  Anchors<D> r;
+  r.ax = hn::Load(d, p.anchorAx + lane);
+  r.ay = hn::Load(d, p.anchorAy + lane);
+  r.bx = hn::Load(d, p.anchorBx + lane);
+  r.by = hn::Load(d, p.anchorBy + lane);
+  r.turnedAx = hn::Sub(hn::Mul(a.qc, r.ax), hn::Mul(a.qs, r.ay));
+  r.turnedAy = hn::Add(hn::Mul(a.qs, r.ax), hn::Mul(a.qc, r.ay));
+  r.turnedBx = hn::Sub(hn::Mul(b.qc, r.bx), hn::Mul(b.qs, r.by));
+  r.turnedBy = hn::Add(hn::Mul(b.qs, r.bx), hn::Mul(b.qc, r.by));
+  return r;
+}
+
 // The separation now: the anchors turned with their bodies (contact_bundles.hpp).
 template <class D>
 HWY_INLINE V<D> separation(D d, const ContactBundle& c, int i, size_t lane, const Frame<D>& f,
-                           const Bodies<D>& a, const Bodies<D>& b) {
-  const BundlePoint& p = c.points[i];
-  const V<D> ax = hn::Load(d, p.anchorAx + lane), ay = hn::Load(d, p.anchorAy + lane);
-  const V<D> bx = hn::Load(d, p.anchorBx + lane), by = hn::Load(d, p.anchorBy + lane);
-  const V<D> turnedAx = hn::Sub(hn::Mul(a.qc, ax), hn::Mul(a.qs, ay));
-  const V<D> turnedAy = hn::Add(hn::Mul(a.qs, ax), hn::Mul(a.qc, ay));
-  const V<D> turnedBx = hn::Sub(hn::Mul(b.qc, bx), hn::Mul(b.qs, by));
-  const V<D> turnedBy = hn::Add(hn::Mul(b.qs, bx), hn::Mul(b.qc, by));
-  const V<D> gapX = hn::Sub(hn::Add(f.moveX, turnedBx), turnedAx);
-  const V<D> gapY = hn::Sub(hn::Add(f.moveY, turnedBy), turnedAy);
+                           const Anchors<D>& q) {
+  const V<D> gapX = hn::Sub(hn::Add(f.moveX, q.turnedBx), q.turnedAx);
+  const V<D> gapY = hn::Sub(hn::Add(f.moveY, q.turnedBy), q.turnedAy);
   return hn::Add(loadFloat(d, c.baseSeparation[i] + lane),
                  hn::Add(hn::Mul(f.nx, gapX), hn::Mul(f.ny, gapY)));
 }
@@ -323,7 +339,8 @@ HWY_INLINE void solveGroup(D d, const BundlePass& pass, ContactBundle& c, Bundle
   Bodies<D> b = loadBodies(d, pass.states, c.offsetB + lane);
   const Frame<D> f = frame(d, c, lane, a, b);
   const Arms<D> r[2] = {arms(d, c.points[0], lane, f), arms(d, c.points[1], lane, f)};
-  const V<D> s[2] = {separation(d, c, 0, lane, f, a, b), separation(d, c, 1, lane, f, a, b)};
+  const V<D> s[2] = {separation(d, c, 0, lane, f, anchors(d, c.points[0], lane, a, b)),
+                     separation(d, c, 1, lane, f, anchors(d, c.points[1], lane, a, b))};
   // Friction first: non-penetration matters more, so the normal impulses get the last word.
   solveFriction(d, c, extra, lane, pass.relax, f, r, &a, &b);
   solveNormals(d, pass, c, extra, lane, f, r, s, &a, &b);
@@ -435,14 +452,11 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
   const V<D> zero = hn::Zero(d), half = hn::Set(d, 0.5);
   V<D> rnA[2], rnB[2], correction[2], deepest = zero;
   for (int i = 0; i < 2; ++i) {
-    const BundlePoint& p = c.points[i];
-    const V<D> ax = hn::Load(d, p.anchorAx + lane), ay = hn::Load(d, p.anchorAy + lane);
-    const V<D> bx = hn::Load(d, p.anchorBx + lane), by = hn::Load(d, p.anchorBy + lane);
-    const V<D> turnedAx = hn::Sub(hn::Mul(a.qc, ax), hn::Mul(a.qs, ay));
-    const V<D> turnedAy = hn::Add(hn::Mul(a.qs, ax), hn::Mul(a.qc, ay));
-    const V<D> turnedBx = hn::Sub(hn::Mul(b.qc, bx), hn::Mul(b.qs, by));
-    const V<D> turnedBy = hn::Add(hn::Mul(b.qs, bx), hn::Mul(b.qc, by));
-    const V<D> s = separation(d, c, i, lane, f, a, b);
+    const Anchors<D> q = anchors(d, c.points[i], lane, a, b);
+    const V<D>&ax = q.ax, &ay = q.ay, &bx = q.bx, &by = q.by;
+    const V<D>&turnedAx = q.turnedAx, &turnedAy = q.turnedAy;
+    const V<D>&turnedBx = q.turnedBx, &turnedBy = q.turnedBy;
+    const V<D> s = separation(d, c, i, lane, f, q);
     const auto present = hn::Gt(loadFloat(d, c.normalMass[i] + lane), zero);
     deepest = hn::Min(deepest, hn::IfThenElseZero(present, s));
     // The shared point: midway between the two anchors now (pB - pA = move + turnedB - turnedA
