@@ -14,7 +14,8 @@
 # when it is missing. DIR (default /var/tmp/impulse2d_fresh) holds the root (DIR/root, removed
 # first when there from an earlier run, and at the end unless --keep) and the logs (DIR/logs,
 # summary.txt the last lines printed). /proc, /sys, /dev/pts and /dev/shm are mounted into the root
-# for the run and unmounted afterwards, also on failure or Ctrl-C. Takes about 20 minutes on a 2-core VM with a near mirror (20 on 2026-11-23).
+# for the run and unmounted afterwards, also on failure or Ctrl-C. Takes about 20 minutes on a
+# 2-core VM (measured 2026-11-23).
 # Exit status: 0 when all three passed, 1 when one failed, 2 when the check could not run.
 # The whole script is one function, read before it runs: editing the file meanwhile is safe.
 main() {
