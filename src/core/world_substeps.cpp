@@ -59,7 +59,7 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
   // the contacts' last word keeps jointed bodies out of the ground. Interleaving a colour's
   // joints with its contacts instead let ragdolls landing at 28 m/s (v3_rain) open their joints
   // by up to 38 cm and sink 12 cm, where this order keeps them within a few centimetres.
-  if (jointOp) {
+  if (jointOp && !solverJoints.empty()) {  // no stage per colour for a world without joints
     for (int color = 0; color < colors; ++color) {
       const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
       stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock),

@@ -412,18 +412,22 @@ std::vector<BodySnapshot> SimWorld::bodies(bool withShapes) const {
   return out;
 }
 
+ContactSnapshot SimWorld::snapshotOf(const ContactInfo& c) const {
+  ContactSnapshot snap;
+  snap.bodyA = world_->body(c.bodyA).name;
+  snap.bodyB = world_->body(c.bodyB).name;
+  snap.point = c.point;
+  snap.normal = c.normal;
+  snap.separation = c.separation;
+  snap.normalImpulse = c.normalImpulse;
+  snap.tangentImpulse = c.tangentImpulse;
+  return snap;
+}
+
 std::vector<ContactSnapshot> SimWorld::contacts() const {
   std::vector<ContactSnapshot> out;
   for (const ContactInfo& c : world_->contacts()) {
-    ContactSnapshot snap;
-    snap.bodyA = world_->body(c.bodyA).name;
-    snap.bodyB = world_->body(c.bodyB).name;
-    snap.point = c.point;
-    snap.normal = c.normal;
-    snap.separation = c.separation;
-    snap.normalImpulse = c.normalImpulse;
-    snap.tangentImpulse = c.tangentImpulse;
-    out.push_back(std::move(snap));
+    out.push_back(snapshotOf(c));
   }
   return out;
 }

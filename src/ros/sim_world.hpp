@@ -284,6 +284,8 @@ class SimWorld {
     uint64_t stepsLeft = 0;
   };
   void restoreStart();
+  /// A contact point with its bodies named (the ~contacts topic and the bumpers).
+  ContactSnapshot snapshotOf(const ContactInfo& contact) const;
   /// A URDF joint in the world with what converts between the URDF's and the world's sense.
   struct UrdfJoint {
     JointId id;

@@ -118,15 +118,7 @@ void SimWorld::collectDeviceReadings(bool bodiesRemoved) {
       change.device = device.def.name;
       change.stampNs = simTimeNs_;
       for (const ContactInfo& c : device.bumper->contacts()) {
-        ContactSnapshot snap;
-        snap.bodyA = world_->body(c.bodyA).name;
-        snap.bodyB = world_->body(c.bodyB).name;
-        snap.point = c.point;
-        snap.normal = c.normal;
-        snap.separation = c.separation;
-        snap.normalImpulse = c.normalImpulse;
-        snap.tangentImpulse = c.tangentImpulse;
-        change.contacts.push_back(std::move(snap));
+        change.contacts.push_back(snapshotOf(c));
       }
       enqueue(&bumperChanges_, std::move(change));
     }
