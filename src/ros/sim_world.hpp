@@ -23,6 +23,7 @@ namespace impulse2d {
 class World;
 class DeviceSet;
 struct DeviceContext;
+struct ContactInfo;
 
 namespace bridge {
 
