@@ -12,11 +12,11 @@ if(IMPULSE2D_CORE_ONLY)
   include(GoogleTest)
   add_executable(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES})
   target_link_libraries(impulse2d_unit_tests PRIVATE impulse2d_scene impulse2d_devices
-    GTest::gtest_main)
+    impulse2d_soak GTest::gtest_main)
   gtest_discover_tests(impulse2d_unit_tests DISCOVERY_TIMEOUT 60)
 elseif(CATKIN_ENABLE_TESTING)  # always true here: CMakeLists.txt includes us only then
   catkin_add_gtest(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES} TIMEOUT 600)
-  target_link_libraries(impulse2d_unit_tests impulse2d_scene impulse2d_devices
+  target_link_libraries(impulse2d_unit_tests impulse2d_scene impulse2d_devices impulse2d_soak
     ${GTEST_MAIN_LIBRARIES})
 endif()
 target_include_directories(impulse2d_unit_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/core

@@ -108,6 +108,15 @@ struct WorldDef {
   double restitutionThreshold = 1.0;  ///< m/s, slower impacts do not bounce
   double maxPushVelocity = 3.0;       ///< m/s, the fastest Baumgarte pushes overlaps apart
   bool warmStarting = true;
+  /// m/s, the fastest a dynamic body moves (as Box2D v3's maximumLinearSpeed): whatever a joint,
+  /// a contact or a force asks, its centre of mass never crosses more than this times the step.
+  /// Valid edits of a running world (joints anchored anywhere, teleports into piles, forces on
+  /// light bodies) thus stay bounded instead of throwing bodies out of the world.
+  double maxLinearSpeed = 400.0;
+  /// rad, the most a dynamic body turns in one solver step (a sub-step for the sub-stepping
+  /// solvers): 0.25 pi, as Box2D v3, so that a turn never aliases (a body spun half a turn per
+  /// step would seem to stand still) and contacts found before the step stay meaningful.
+  double maxRotation = 0.25 * kPi;
   /// Soft step only: contacts push out of overlaps as damped springs of this frequency, capped
   /// at 0.15 x the sub-step rate (stiffer ones were measured to shake large pyramids apart) and
   /// twice as stiff against static and kinematic bodies; joints hold as springs of jointHertz,
@@ -133,8 +142,8 @@ struct WorldDef {
 /// Why a step removed a body.
 enum class RemovalCause {
   LeftWorldExtent,  ///< its centre of mass left kWorldExtent (limits.hpp)
-  Overflow,         ///< pushed faster than kWorldExtent per step (a force too large for its
-                    ///< mass), or its state stopped being finite
+  Overflow,         ///< its state stopped being finite (the last guard: the motion limits
+                    ///< keep every valid edit from reaching it)
   LostForGood,      ///< lost for good below the static bodies, with WorldDef::removeLostBodies
 };
 

@@ -38,9 +38,14 @@ constexpr double kMaxCoordinate = 1e6;
 constexpr double kMaxSpeed = 1e6;
 /// N and N m: the largest force or torque one call may apply.
 constexpr double kMaxForce = 1e12;
-/// m. A body whose centre of mass leaves this box (on either axis), or that a force pushes faster
-/// than this per step (or whose state stops being finite), is removed at the end of the step
-/// and reported by World::takeRemovedBodies(), instead of being computed on as inf or NaN.
+/// kg and kg m^2: the least mass and rotational inertia of a dynamic body; lighter shapes are
+/// given these. With kMaxForce they keep every velocity change finite; the motion limits
+/// (WorldDef::maxLinearSpeed, maxRotation) bound it.
+constexpr double kMinMass = 1e-9;
+constexpr double kMinInertia = 1e-20;
+/// m. A body whose centre of mass leaves this box (on either axis), or whose state stops being
+/// finite, is removed at the end of the step and reported by World::takeRemovedBodies(), instead
+/// of being computed on as inf or NaN. With the motion limits, no valid edit reaches either.
 constexpr double kWorldExtent = 1e7;
 
 }  // namespace impulse2d

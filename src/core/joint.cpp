@@ -105,7 +105,9 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
   }
 }
 
-void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b) {
+namespace {
+
+void applyWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
   switch (joint.def.type) {
     case JointType::Revolute:
       warmStartRevolute(joint, a, b);
@@ -120,6 +122,45 @@ void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b) {
       warmStartDistance(joint, a, b);
       break;
   }
+}
+
+// How far past the motion limits the velocity change from `before` to `after` goes: its square
+// over the limit's square, the larger of the linear and the angular one.
+double excessSquared(const SolverBody& before, const SolverBody& after,
+                     const MotionLimits& limits) {
+  const double linear =
+      (after.linearVelocity - before.linearVelocity).squaredNorm() / limits.maxSpeedSquared;
+  const double turn = (after.angularVelocity - before.angularVelocity) / limits.maxTurnRate;
+  return std::max(linear, turn * turn);
+}
+
+}  // namespace
+
+void scaleJointImpulses(Joint& joint, double scale) {
+  joint.pointImpulse *= scale;
+  joint.motorImpulse *= scale;
+  joint.lowerImpulse *= scale;
+  joint.upperImpulse *= scale;
+  joint.angularImpulse *= scale;
+  joint.lengthImpulse *= scale;
+}
+
+void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits) {
+  SolverBody trialA = a, trialB = b;
+  applyWarmStart(joint, trialA, trialB);
+  const double excess =
+      std::max(excessSquared(a, trialA, limits), excessSquared(b, trialB, limits));
+  if (excess <= 1.0) {
+    a = trialA;
+    b = trialB;
+    return;
+  }
+  // Last step's impulse would change a body's velocity by more than the fastest it may move:
+  // a joint that cannot be met (a loop that does not close, a pin fighting a kinematic body)
+  // whose impulse grew step after step while the motion limits ate its effect. Warm started
+  // whole, it would grow on without bound; so it starts from what the limits allow.
+  scaleJointImpulses(joint, std::isfinite(excess) ? 1.0 / std::sqrt(excess) : 0.0);
+  applyWarmStart(joint, a, b);
 }
 
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "feedback.hpp"
+#include "motion_limits.hpp"
 #include "solver_body.hpp"
 
 namespace impulse2d {
@@ -82,7 +83,11 @@ void initJoint(Joint& joint, const JointDef& def, const Body& a, const Body& b);
 /// sub-step for the soft step).
 void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def,
                   const Feedback& fb, double dt);
-void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b);
+/// Applies the impulses kept from the last step, scaled down when they would change a body's
+/// velocity by more than the motion limits of this pass allow.
+void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits);
+/// Scales every accumulated impulse of the joint.
+void scaleJointImpulses(Joint& joint, double scale);
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
 /// One NGS position pass; returns true when the joint's error is within the slop.
 bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);

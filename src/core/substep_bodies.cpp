@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include <impulse2d/limits.hpp>
 
 namespace impulse2d {
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
-                           const Vec2& gravity, double h, int substeps, StepWorkers& workers) {
+                           const Vec2& gravity, double h, const MotionLimits& limits,
+                           StepWorkers& workers) {
   bodies_ = &bodies;
+  limits_ = limits;
   const int slots = static_cast<int>(bodies.size());
   const int blocks = (slots + kSlotsPerBlock - 1) / kSlotsPerBlock;
   auto rowOf = [&](int i) {  // 0: none, 1: a dynamic row, 2: a kinematic one
@@ -44,7 +45,7 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
     for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
       const int kind = rowOf(i);
       entryOfSlot_[i] = kind == 0 ? -1 : next[kind - 1]++;
-      if (kind != 0 && !add(bodies[i], i, entryOfSlot_[i], gravity, h, substeps)) {
+      if (kind != 0 && !add(bodies[i], i, entryOfSlot_[i], gravity, h)) {
         overflowedOfBlock_[block].push_back(i);
       }
     }
@@ -57,8 +58,7 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   std::fill(states_.begin() + movingCount_, states_.end(), BodyState());
 }
 
-bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravity, double h,
-                        int substeps) {
+bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravity, double h) {
   BodyState& state = states_[entry];
   state = BodyState();
   state.vx = body.linearVelocity.x();
@@ -84,14 +84,13 @@ bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravi
     // Implicit damping: stable for any coefficient and sub-step.
     if (body.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * body.linearDamping);
     if (body.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * body.angularDamping);
-    // The source of non-finite impulses: a force too large for the body's mass, which within
-    // the step would take it faster than across the whole world. It stands still with infinite
-    // mass for the step, before any impulse, and is removed at its end (world_bounds.cpp).
-    const double maxSpeed = kWorldExtent / (h * substeps);
-    auto fits = [&](double v, double dv) {
-      return std::abs(v) + substeps * std::abs(dv) <= maxSpeed;
-    };
-    if (!(fits(state.vx, load.dvx) && fits(state.vy, load.dvy) && fits(state.w, load.dw))) {
+    // The last guard against non-finite impulses (0 x inf is NaN in the static bodies' rows,
+    // which every body touching them reads): a state or load that is not finite. The body
+    // stands still with infinite mass for the step and is removed at its end
+    // (world_bounds.cpp). Finite but absurd loads are bounded by the motion limits instead.
+    const bool finite = std::isfinite(state.vx + state.vy + state.w) &&
+                        std::isfinite(load.dvx + load.dvy + load.dw);
+    if (!finite) {
       state.vx = state.vy = state.w = 0.0;
       sim.invMass = sim.invInertia = 0.0;
       load = BodyLoad();
@@ -112,6 +111,7 @@ void SubstepBodies::integrateVelocities(int begin, int end) {
     s.vx = (s.vx + load.dvx) * load.linearDamping;
     s.vy = (s.vy + load.dvy) * load.linearDamping;
     s.w = (s.w + load.dw) * load.angularDamping;
+    limits_.apply(s.vx, s.vy, s.w);
   }
 }
 
@@ -123,6 +123,8 @@ void SubstepBodies::integratePositions(int begin, int end, double h) {
       s.vx = start.kinematicVelocity.x();
       s.vy = start.kinematicVelocity.y();
       s.w = start.kinematicAngularVelocity;
+    } else {
+      limits_.apply(s.vx, s.vy, s.w);
     }
     s.dx += h * s.vx;
     s.dy += h * s.vy;
@@ -186,8 +188,10 @@ void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const 
     body.xf.q = Rot(body.angle);
     body.xf.p = body.center - body.xf.q.apply(body.localCenter);
     if (e < dynamicCount_) {
-      body.linearVelocity = Vec2(s.vx, s.vy);
-      body.angularVelocity = s.w;
+      double vx = s.vx, vy = s.vy, w = s.w;
+      limits_.apply(vx, vy, w);  // restitution and the relax pass come after the last move
+      body.linearVelocity = Vec2(vx, vy);
+      body.angularVelocity = w;
     }
   }
 }

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "motion_limits.hpp"
 #include "solver_body.hpp"
 #include "step_workers.hpp"
 
@@ -61,10 +62,10 @@ class SubstepBodies {
  public:
   /// Starts a step of sub-steps of h: a row for every living, awake, non-static body (dynamic
   /// first, in slot order), then the identity row and `workers` sinks.
-  /// A body that a force would push faster than across the world within the step is held still
-  /// with infinite mass instead, and listed in overflowed().
+  /// Dynamic bodies move within `limits` (motion_limits.hpp). A body whose velocity or load is
+  /// not finite is held still with infinite mass instead, and listed in overflowed().
   void gather(const std::vector<Body>& bodies, const std::vector<char>& alive, const Vec2& gravity,
-              double h, int substeps, StepWorkers& workers);
+              double h, const MotionLimits& limits, StepWorkers& workers);
   const std::vector<int>& overflowed() const { return overflowed_; }
 
   /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).
@@ -104,14 +105,14 @@ class SubstepBodies {
   /// `pose` (position passes).
   void store(int slot, const SolverBody& view, bool pose);
 
-  /// Writes the moved poses and (dynamic) velocities of the entries [begin, end) back to the
+  /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin, end) back to the
   /// bodies.
   void finish(std::vector<Body>& bodies, int begin, int end) const;
 
  private:
   static constexpr int kSlotsPerBlock = 1024;
   /// Fills the entry's rows; false for a body held still (see gather()).
-  bool add(const Body& body, int slot, int entry, const Vec2& gravity, double h, int substeps);
+  bool add(const Body& body, int slot, int entry, const Vec2& gravity, double h);
 
   const std::vector<Body>* bodies_ = nullptr;
   std::vector<BodyState> states_;
@@ -123,6 +124,7 @@ class SubstepBodies {
   std::vector<std::vector<int>> overflowedOfBlock_;
   std::vector<int> overflowed_;  // slots, in slot order
   int dynamicCount_ = 0, movingCount_ = 0;
+  MotionLimits limits_;
 };
 
 }  // namespace impulse2d

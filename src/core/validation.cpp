@@ -105,6 +105,13 @@ std::string World::validate(const WorldDef& def) {
   if (!finiteNonNegative(def.maxPushVelocity)) {
     return "max_push_velocity: must be finite and >= 0";
   }
+  if (!(std::isfinite(def.maxLinearSpeed) && def.maxLinearSpeed > 0.0 &&
+        def.maxLinearSpeed <= kMaxSpeed)) {
+    return "max_linear_speed: must be > 0 and <= 1e6 m/s";
+  }
+  if (!(std::isfinite(def.maxRotation) && def.maxRotation > 0.0 && def.maxRotation <= 0.5 * kPi)) {
+    return "max_rotation: must be > 0 and <= pi/2 rad";
+  }
   if (!finiteNonNegative(def.timeToSleep)) return "time_to_sleep: must be finite and >= 0";
   if (!finiteNonNegative(def.sleepLinearTolerance)) {
     return "sleep_linear_tolerance: must be finite and >= 0";

@@ -153,6 +153,9 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
       total.center = def.localCenter;
     }
     if (def.inertia > 0.0) total.inertia = def.inertia;
+    // Lighter bodies would turn a legal force (kMaxForce) into a velocity beyond any double.
+    total.mass = std::max(total.mass, kMinMass);
+    total.inertia = std::max(total.inertia, kMinInertia);
   }
 
   const int slot = w.bodies.acquire();

@@ -3,6 +3,8 @@
 
 #include <impulse2d/limits.hpp>
 
+#include "motion_limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -178,8 +180,7 @@ void WorldImpl::updateContacts() {
 }
 
 void WorldImpl::integrateVelocities(double dt) {
-  // Faster than this, a body crosses the whole world within the step: it cannot be simulated.
-  const double maxSpeed = kWorldExtent / dt;
+  const MotionLimits limits = MotionLimits::of(def, dt);
   for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
     SolverBody& body = solverBodies[e];
     if (body.invMass == 0.0) continue;  // overflowed earlier in this step (below)
@@ -189,13 +190,12 @@ void WorldImpl::integrateVelocities(double dt) {
     // Implicit damping: stable for any damping coefficient and time step.
     if (load.linearDamping > 0.0) body.linearVelocity *= 1.0 / (1.0 + dt * load.linearDamping);
     if (load.angularDamping > 0.0) body.angularVelocity *= 1.0 / (1.0 + dt * load.angularDamping);
-    // The source of non-finite impulses: a force too large for the body's mass. Its impulses
-    // would be inf, and 0 x inf is NaN in the static and sleeping bodies' read-only entries,
-    // which every other body touching them reads. So the body stands still, with infinite
-    // mass, for the rest of the step, and is removed at its end (world_bounds.cpp).
-    if (!(std::abs(body.linearVelocity.x()) <= maxSpeed &&
-          std::abs(body.linearVelocity.y()) <= maxSpeed &&
-          std::abs(body.angularVelocity) <= maxSpeed)) {
+    limits.apply(body.linearVelocity, body.angularVelocity);
+    // The last guard against non-finite impulses: 0 x inf is NaN in the static and sleeping
+    // bodies' read-only entries, which every other body touching them reads. A body whose
+    // velocity is not finite stands still, with infinite mass, for the rest of the step, and is
+    // removed at its end (world_bounds.cpp).
+    if (!(isFinite(body.linearVelocity) && std::isfinite(body.angularVelocity))) {
       body.linearVelocity.setZero();
       body.angularVelocity = body.invMass = body.invInertia = 0.0;
       overflowedBodies.push_back(solverBodies.slotOf(e));
@@ -227,9 +227,10 @@ void WorldImpl::prepareJoints(const Feedback& fb, double dt) {
 }
 
 void WorldImpl::warmStartJoints() {
+  const MotionLimits limits = MotionLimits::of(def, def.timeStep);
   for (const int j : activeJoints) {
     Joint& joint = joints.items[j];
-    warmStartJoint(joint, solverBodies[joint.entryA], solverBodies[joint.entryB]);
+    warmStartJoint(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], limits);
   }
 }
 
@@ -262,8 +263,10 @@ void WorldImpl::solve(double dt) {
 void WorldImpl::integratePositions(double dt) {
   solverBodies.holdKinematicVelocities();
   fastBodies.clear();
+  const MotionLimits limits = MotionLimits::of(def, dt);
   for (int e = 0; e < solverBodies.movingCount(); ++e) {
     SolverBody& body = solverBodies[e];
+    if (solverBodies.isDynamic(e)) limits.apply(body.linearVelocity, body.angularVelocity);
     const Vec2 move = dt * body.linearVelocity;
     const double turn = dt * body.angularVelocity;
     if (solverBodies.isDynamic(e)) {

@@ -94,7 +94,7 @@ void WorldImpl::solveSubsteps(double dt) {
   const double h = dt / substeps;
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
-  sb.gather(bodies.items, bodies.alive, def.gravity, h, substeps, stepWorkers);
+  sb.gather(bodies.items, bodies.alive, def.gravity, h, MotionLimits::of(def, h), stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
 
   activeJoints.clear();
@@ -142,11 +142,12 @@ void WorldImpl::solveSubsteps(double dt) {
   const int dynamicBlocks = blocksOf(sb.dynamicCount(), kBodiesPerBlock);
   const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
 
+  const MotionLimits motionLimits = MotionLimits::of(def, h);
   // Joints prepare their rows at the bodies' poses when a pass first reaches them.
   const Feedback firstFeedback = soft ? jointSpring : rigid;
   const JointOp prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
     prepareJoint(j, a, b, def, firstFeedback, h);
-    warmStartJoint(j, a, b);
+    warmStartJoint(j, a, b, motionLimits);
   };
   const JointOp solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
     solveJointVelocity(j, a, b, h);

@@ -30,7 +30,9 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
                   "contact_damping_ratio",
                   "joint_hertz",
                   "joint_damping_ratio",
-                  "remove_lost_bodies"});
+                  "remove_lost_bodies",
+                  "max_linear_speed",
+                  "max_rotation"});
   WorldDef& w = scene->world;
   w.gravity = f.vec2("gravity", w.gravity);
   w.timeStep = f.number("time_step", w.timeStep);
@@ -48,6 +50,8 @@ void parseWorld(const YAML::Node& node, Scene* scene) {
   w.speculativeDistance = f.number("speculative_distance", w.speculativeDistance);
   w.restitutionThreshold = f.number("restitution_threshold", w.restitutionThreshold);
   w.maxPushVelocity = f.number("max_push_velocity", w.maxPushVelocity);
+  w.maxLinearSpeed = f.number("max_linear_speed", w.maxLinearSpeed);
+  w.maxRotation = f.number("max_rotation", w.maxRotation);
   w.warmStarting = f.boolean("warm_starting", w.warmStarting);
   w.enableSleep = f.boolean("enable_sleep", w.enableSleep);
   w.timeToSleep = f.number("time_to_sleep", w.timeToSleep);

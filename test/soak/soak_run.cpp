@@ -1,0 +1,582 @@
+#include "soak_run.hpp"
+
+#include <impulse2d/world.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <sstream>
+
+namespace impulse2d {
+namespace soak {
+namespace {
+
+constexpr double kHalfWidth = 10.0;   // m, the arena's inside: x in [-10, 10]
+constexpr double kHeight = 20.0;      // m, y in [0, 20]
+constexpr double kWall = 2.0;         // m, thickness of the four static walls
+constexpr double kArenaSlack = 0.5;   // m a centre of mass may sink into a wall
+constexpr size_t kMaxOwnBodies = 160;
+constexpr size_t kMaxOwnJoints = 140;
+constexpr size_t kEditsKept = 24;
+// Kinematic bodies are driven around the middle, far enough from the walls that they cannot
+// squeeze a dynamic body into one.
+constexpr double kKinematicHalfWidth = 6.0, kKinematicLow = 4.0, kKinematicHigh = 16.0;
+
+struct Wrench {
+  BodyId body;
+  Vec2 force = Vec2::Zero(), point = Vec2::Zero();
+  double torque = 0.0;
+  int stepsLeft = 0;
+};
+
+class Soak {
+ public:
+  explicit Soak(const Options& options) : options_(options), random_(options.seed) {
+    WorldDef def;
+    def.solver = options.solver;
+    def.threads = options.threads;
+    def.gravity = options.gravity ? Vec2(0.0, -9.81) : Vec2::Zero();
+    world_.settings() = def;
+    addWall("ground", Vec2(0.0, -0.5 * kWall), Vec2(2 * kHalfWidth + 2 * kWall, kWall));
+    addWall("ceiling", Vec2(0.0, kHeight + 0.5 * kWall), Vec2(2 * kHalfWidth + 2 * kWall, kWall));
+    addWall("left", Vec2(-kHalfWidth - 0.5 * kWall, 0.5 * kHeight), Vec2(kWall, kHeight));
+    addWall("right", Vec2(kHalfWidth + 0.5 * kWall, 0.5 * kHeight), Vec2(kWall, kHeight));
+  }
+
+  Report run() {
+    for (int step = 0; step < options_.steps && report_.violations.empty(); ++step) {
+      const int edits = uniformInt(0, 3);
+      for (int k = 0; k < edits; ++k) edit();
+      applyWrenches();
+      stepAndCheck();
+    }
+    if (report_.violations.empty()) quietPhase();
+    return report_;
+  }
+
+ private:
+  // --- random numbers ---
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random_); }
+  int uniformInt(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random_); }
+  bool chance(double p) { return uniform(0.0, 1.0) < p; }
+  Vec2 insideArena(double margin) {
+    return Vec2(uniform(-kHalfWidth + margin, kHalfWidth - margin), uniform(margin, kHeight - margin));
+  }
+
+  void addWall(const char* name, const Vec2& center, const Vec2& size) {
+    BodyDef def;
+    def.name = name;
+    def.type = BodyType::Static;
+    def.position = center;
+    ShapeDef box;
+    box.size = size;
+    def.shapes.push_back(box);
+    world_.createBody(def);
+  }
+
+  void log(const std::string& text) {
+    ++report_.edits;
+    report_.lastEdits.push_back("step " + std::to_string(world_.stepCount()) + ": " + text);
+    if (report_.lastEdits.size() > kEditsKept) report_.lastEdits.pop_front();
+  }
+  static std::string str(const Vec2& v) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "[%.4g, %.4g]", v.x(), v.y());
+    return text;
+  }
+  void violation(const std::string& text) {
+    if (report_.violations.size() < 16) {
+      report_.violations.push_back("step " + std::to_string(world_.stepCount()) + ": " + text);
+    }
+  }
+  std::string nameOf(BodyId id) const { return world_.isValid(id) ? world_.body(id).name : "?"; }
+
+  BodyId randomBody() {
+    if (bodies_.empty()) return BodyId();
+    auto it = bodies_.begin();
+    std::advance(it, uniformInt(0, static_cast<int>(bodies_.size()) - 1));
+    return it->second;
+  }
+
+  // --- edits ---
+  void edit() {
+    const double pick = uniform(0.0, 1.0);
+    if (pick < 0.30) spawn();
+    else if (pick < 0.40) destroySome();
+    else if (pick < 0.62) join();
+    else if (pick < 0.68) unjoin();
+    else if (pick < 0.76) teleport();
+    else if (pick < 0.84) push();
+    else if (pick < 0.89) driveKinematic();
+    else if (pick < 0.91) toggleSleep();
+    else if (pick < 0.93) setMotor();
+    else badRequest();
+  }
+
+  ShapeDef randomShape() {
+    ShapeDef shape;
+    const int kind = uniformInt(0, 2);
+    if (kind == 0) {
+      shape.kind = ShapeKind::Box;
+      shape.size = Vec2(uniform(0.1, 1.2), uniform(0.1, 1.2));
+    } else if (kind == 1) {
+      shape.kind = ShapeKind::Circle;
+      shape.radius = uniform(0.05, 0.6);
+    } else {
+      shape.kind = ShapeKind::Polygon;
+      const int n = uniformInt(3, 8);
+      const double r = uniform(0.1, 0.7);
+      for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * kPi * (i + uniform(0.0, 0.4)) / n;
+        shape.vertices.push_back(Vec2(r * std::cos(a), r * std::sin(a)));
+      }
+    }
+    if (chance(0.5)) shape.density = chance(0.2) ? 0.1 : uniform(0.2, 5.0);
+    if (chance(0.5)) shape.friction = uniform(0.0, 1.0);
+    if (chance(0.3)) shape.restitution = uniform(0.0, 0.9);
+    return shape;
+  }
+
+  void spawn() {
+    if (bodies_.size() >= kMaxOwnBodies) return destroySome();
+    BodyDef def;
+    def.name = "b" + std::to_string(nextName_++);
+    def.type = chance(0.2) ? BodyType::Kinematic : BodyType::Dynamic;
+    def.position = def.type == BodyType::Kinematic
+                       ? Vec2(uniform(-kKinematicHalfWidth, kKinematicHalfWidth),
+                              uniform(kKinematicLow, kKinematicHigh))
+                       : insideArena(1.0);
+    def.angle = uniform(-kPi, kPi);
+    def.linearVelocity = Vec2(uniform(-5.0, 5.0), uniform(-5.0, 5.0));
+    def.angularVelocity = uniform(-3.0, 3.0);
+    def.bullet = chance(0.1);
+    def.awake = !chance(0.1);
+    def.shapes.push_back(randomShape());
+    if (def.type == BodyType::Dynamic && chance(0.15)) {
+      ShapeDef second = randomShape();
+      second.offset = Vec2(uniform(-0.5, 0.5), uniform(-0.5, 0.5));
+      def.shapes.push_back(second);
+    }
+    std::string error;
+    const BodyId id = world_.createBody(def, &error);
+    log("spawn " + def.name + (def.type == BodyType::Kinematic ? " kinematic" : "") + " at " +
+        str(def.position));
+    if (!id.valid()) return violation("a valid spawn was refused: " + error);
+    bodies_[def.name] = id;
+  }
+
+  void destroySome() {
+    const BodyId id = randomBody();
+    if (!id.valid()) return;
+    const std::string name = nameOf(id);
+    log("delete " + name);
+    if (!world_.destroyBody(id)) violation("deleting " + name + " failed");
+    bodies_.erase(name);
+    for (auto it = joints_.begin(); it != joints_.end();) {
+      it = world_.isValid(*it) ? std::next(it) : joints_.erase(it);
+    }
+  }
+
+  void join() {
+    if (joints_.size() >= kMaxOwnJoints || bodies_.size() < 2) return unjoin();
+    JointDef def;
+    def.bodyA = randomBody();
+    def.bodyB = randomBody();
+    if (def.bodyA == def.bodyB) return;
+    def.type = static_cast<JointType>(uniformInt(0, 3));
+    def.anchor = insideArena(0.0);
+    def.collideConnected = chance(0.3);
+    if (def.type == JointType::Prismatic) {
+      const double a = uniform(-kPi, kPi);
+      def.axis = Vec2(std::cos(a), std::sin(a));
+    }
+    if ((def.type == JointType::Revolute || def.type == JointType::Prismatic) && chance(0.3)) {
+      def.enableLimit = true;
+      def.lower = uniform(-1.0, 0.0);
+      def.upper = uniform(0.0, 1.0);
+    }
+    if ((def.type == JointType::Revolute || def.type == JointType::Prismatic) && chance(0.2)) {
+      def.enableMotor = true;
+      def.motorSpeed = uniform(-5.0, 5.0);
+      def.maxMotorTorque = uniform(0.0, 100.0);
+    }
+    if (def.type == JointType::Distance) {
+      def.length = uniform(0.2, 3.0);
+      def.useAnchorB = chance(0.5);
+      def.anchorB = insideArena(0.0);
+      if ((def.anchorB - def.anchor).norm() < 0.01) def.useAnchorB = false;
+    }
+    if ((def.type == JointType::Distance || def.type == JointType::Weld) && chance(0.3)) {
+      def.frequency = uniform(0.5, 10.0);
+      def.dampingRatio = uniform(0.0, 1.0);
+    }
+    std::string error;
+    const JointId id = world_.createJoint(def, &error);
+    const char* types[] = {"revolute", "prismatic", "weld", "distance"};
+    log(std::string("joint ") + types[static_cast<int>(def.type)] + " " + nameOf(def.bodyA) + "-" +
+        nameOf(def.bodyB) + " at " + str(def.anchor));
+    const bool bothStill = world_.body(def.bodyA).type != BodyType::Dynamic &&
+                           world_.body(def.bodyB).type != BodyType::Dynamic;
+    if (id.valid()) {
+      joints_.push_back(id);
+    } else if (!bothStill) {
+      violation("a valid joint was refused: " + error);
+    }
+  }
+
+  void unjoin() {
+    if (joints_.empty()) return;
+    const size_t k = static_cast<size_t>(uniformInt(0, static_cast<int>(joints_.size()) - 1));
+    log("delete joint " + std::to_string(joints_[k].index));
+    if (!world_.destroyJoint(joints_[k])) violation("deleting a joint failed");
+    joints_.erase(joints_.begin() + static_cast<long>(k));
+  }
+
+  void teleport() {
+    const BodyId id = randomBody();
+    if (!id.valid() || world_.body(id).type != BodyType::Dynamic) return;
+    const Vec2 to = insideArena(1.0);
+    const Vec2 v(uniform(-5.0, 5.0), uniform(-5.0, 5.0));
+    log("teleport " + nameOf(id) + " to " + str(to) + " at " + str(v));
+    if (!world_.setTransform(id, to, uniform(-kPi, kPi)) ||
+        !world_.setVelocity(id, v, uniform(-5.0, 5.0))) {
+      violation("a valid teleport was refused");
+    }
+  }
+
+  void push() {
+    const BodyId id = randomBody();
+    if (!id.valid() || world_.body(id).type != BodyType::Dynamic) return;
+    Wrench w;
+    w.body = id;
+    const double a = uniform(-kPi, kPi), f = uniform(0.0, 200.0);
+    w.force = Vec2(f * std::cos(a), f * std::sin(a));
+    w.torque = uniform(-20.0, 20.0);
+    w.point = world_.body(id).center + Vec2(uniform(-0.5, 0.5), uniform(-0.5, 0.5));
+    w.stepsLeft = uniformInt(1, static_cast<int>(0.5 / world_.settings().timeStep));
+    log("wrench " + nameOf(id) + " " + str(w.force) + " for " + std::to_string(w.stepsLeft));
+    wrenches_.push_back(w);
+  }
+
+  void applyWrenches() {
+    for (Wrench& w : wrenches_) {
+      if (!world_.isValid(w.body)) w.stepsLeft = 0;
+      if (w.stepsLeft-- <= 0) continue;
+      const Vec2 point = world_.body(w.body).xf.apply(world_.body(w.body).localCenter);
+      if (!world_.applyForce(w.body, w.force, point) || !world_.applyTorque(w.body, w.torque)) {
+        violation("a valid wrench was refused");
+      }
+    }
+    wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(),
+                                   [](const Wrench& w) { return w.stepsLeft <= 0; }),
+                    wrenches_.end());
+  }
+
+  void driveKinematic() {
+    for (const auto& [name, id] : bodies_) {
+      const Body& body = world_.body(id);
+      if (body.type != BodyType::Kinematic) continue;
+      // Head back to the middle when out of its box, else anywhere.
+      const Vec2 home(0.0, 0.5 * (kKinematicLow + kKinematicHigh));
+      const bool out = std::abs(body.center.x()) > kKinematicHalfWidth ||
+                       body.center.y() < kKinematicLow || body.center.y() > kKinematicHigh;
+      Vec2 v(uniform(-2.0, 2.0), uniform(-2.0, 2.0));
+      if (out) v = 2.0 * (home - body.center).normalized();
+      world_.setVelocity(id, v, uniform(-2.0, 2.0));
+    }
+    log("drive the kinematic bodies");
+  }
+
+  void toggleSleep() {
+    world_.settings().enableSleep = !world_.settings().enableSleep;
+    log(std::string("sleep ") + (world_.settings().enableSleep ? "on" : "off"));
+  }
+
+  void setMotor() {
+    if (joints_.empty()) return;
+    const JointId id = joints_[static_cast<size_t>(uniformInt(0, static_cast<int>(joints_.size()) - 1))];
+    const JointType type = world_.jointDef(id).type;
+    if (type != JointType::Revolute && type != JointType::Prismatic) return;
+    log("motor on joint " + std::to_string(id.index));
+    world_.setJointMotor(id, chance(0.7), uniform(-5.0, 5.0), uniform(0.0, 100.0));
+  }
+
+  // Each must be refused and leave the world as it was.
+  void badRequest() {
+    const size_t bodies = world_.bodyCount(), joints = world_.jointCount();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    const BodyId some = randomBody();
+    bool refused = true;
+    const int kind = uniformInt(0, 5);
+    BodyDef body;
+    body.shapes.push_back(randomShape());
+    JointDef joint;
+    switch (kind) {
+      case 0:
+        body.position = Vec2(nan, 1.0);
+        refused = !world_.createBody(body).valid();
+        break;
+      case 1:
+        body.shapes[0] = ShapeDef();
+        body.shapes[0].size = Vec2(-1.0, 0.5);
+        refused = !world_.createBody(body).valid();
+        break;
+      case 2:
+        if (!some.valid()) return;
+        body.name = nameOf(some);  // duplicate
+        refused = !world_.createBody(body).valid();
+        break;
+      case 3:
+        joint.bodyA = BodyId{100000, 0};
+        joint.bodyB = some;
+        refused = !world_.createJoint(joint).valid();
+        break;
+      case 4:
+        if (!some.valid()) return;
+        refused = !world_.applyForce(some, Vec2(inf, 0.0), Vec2::Zero());
+        break;
+      case 5:
+        if (!some.valid()) return;
+        refused = !world_.setTransform(some, Vec2(0.0, nan), 0.0);
+        break;
+    }
+    log("bad request " + std::to_string(kind));
+    if (!refused) violation("bad request " + std::to_string(kind) + " was accepted");
+    if (world_.bodyCount() != bodies || world_.jointCount() != joints) {
+      violation("bad request " + std::to_string(kind) + " changed the world");
+    }
+    ++report_.badRefused;
+  }
+
+  // --- invariants ---
+  // The bodies that a kinematic body can carry: jointed to one, directly or through others, or
+  // touching one.
+  std::set<int> carriedByKinematic() {
+    std::map<int, std::vector<int>> links;
+    for (const JointId id : joints_) {
+      const JointDef& def = world_.jointDef(id);
+      links[def.bodyA.index].push_back(def.bodyB.index);
+      links[def.bodyB.index].push_back(def.bodyA.index);
+    }
+    std::set<int> carried;
+    std::vector<int> todo;
+    for (const auto& [name, id] : bodies_) {
+      if (world_.body(id).type == BodyType::Kinematic) todo.push_back(id.index);
+    }
+    for (const ContactInfo& c : world_.contacts()) {
+      const bool kinA = world_.body(c.bodyA).type == BodyType::Kinematic;
+      const bool kinB = world_.body(c.bodyB).type == BodyType::Kinematic;
+      if (kinA) todo.push_back(c.bodyB.index);
+      if (kinB) todo.push_back(c.bodyA.index);
+    }
+    while (!todo.empty()) {
+      const int slot = todo.back();
+      todo.pop_back();
+      if (!carried.insert(slot).second) continue;
+      for (const int other : links[slot]) todo.push_back(other);
+    }
+    return carried;
+  }
+
+  void stepAndCheck() {
+    world_.step();
+    ++report_.steps;
+    report_.maxBodies = std::max(report_.maxBodies, bodies_.size());
+    report_.maxJoints = std::max(report_.maxJoints, joints_.size());
+    for (const RemovedBody& r : world_.takeRemovedBodies()) {
+      violation("the world removed " + r.name + ": " + r.reason);
+    }
+    if (world_.lostBodyCount() > 0) violation("a body was found lost for good");
+    const WorldDef& def = world_.settings();
+    const int substeps = usesSubsteps(def.solver) ? std::max(1, def.velocityIterations) : 1;
+    const double maxTurnRate = def.maxRotation * substeps / def.timeStep;
+    std::set<int> carried;
+    bool carriedKnown = false;
+    for (const auto& [name, id] : bodies_) {
+      report_.checks += 4;
+      if (!world_.isValid(id)) {
+        violation(name + " is gone though it was never deleted");
+        continue;
+      }
+      const Body& b = world_.body(id);
+      if (!isFinite(b.center) || !isFinite(b.linearVelocity) || !std::isfinite(b.angle) ||
+          !std::isfinite(b.angularVelocity)) {
+        violation(name + ": its state is not finite");
+        continue;
+      }
+      if (b.type != BodyType::Dynamic) continue;
+      if (b.linearVelocity.norm() > def.maxLinearSpeed * (1.0 + 1e-9)) {
+        violation(name + " moves at " + std::to_string(b.linearVelocity.norm()) + " m/s");
+      }
+      if (std::abs(b.angularVelocity) > maxTurnRate * (1.0 + 1e-9)) {
+        violation(name + " turns at " + std::to_string(b.angularVelocity) + " rad/s");
+      }
+      const bool inside = std::abs(b.center.x()) <= kHalfWidth + kArenaSlack &&
+                          b.center.y() >= -kArenaSlack && b.center.y() <= kHeight + kArenaSlack;
+      if (!inside) {
+        if (!carriedKnown) carried = carriedByKinematic(), carriedKnown = true;
+        if (!carried.count(id.index)) violation(name + " left the arena, at " + str(b.center));
+      }
+    }
+  }
+
+  // --- the quiet phase: nothing does work on the world ---
+  double energy() const {
+    double e = 0.0;
+    const Vec2 g = world_.settings().gravity;
+    for (const auto& [name, id] : bodies_) {
+      const Body& b = world_.body(id);
+      if (b.type != BodyType::Dynamic) continue;
+      e += 0.5 * b.mass * b.linearVelocity.squaredNorm() +
+           0.5 * b.inertia * b.angularVelocity * b.angularVelocity - b.mass * g.dot(b.center);
+    }
+    return e;
+  }
+
+  // An upper bound on what the springs hold: 0.5 k x^2 with k = m w^2 on each spring's row, m at
+  // most the reduced mass (distance) or the angle row's own mass (weld).
+  double springEnergy() const {
+    double e = 0.0;
+    for (const JointId id : joints_) {
+      const JointDef& def = world_.jointDef(id);
+      if (def.frequency <= 0.0) continue;
+      const Body& a = world_.body(def.bodyA);
+      const Body& b = world_.body(def.bodyB);
+      const double w = 2.0 * kPi * def.frequency;
+      const JointState s = world_.jointState(id);
+      if (def.type == JointType::Distance) {
+        const double m = 1.0 / (a.invMass + b.invMass);
+        const double x = s.position - def.length;  // the soak always gives a length
+        e += 0.5 * m * w * w * x * x;
+      } else {
+        const double i = 1.0 / (a.invInertia + b.invInertia);
+        const double x = s.position;
+        e += 0.5 * i * w * w * x * x;
+      }
+    }
+    return e;
+  }
+
+  // The deepest overlap in piles with no joint and no kinematic body in them: what a solver
+  // must push apart, with nothing holding it together.
+  double deepestFreeOverlap() {
+    int slots = 0;
+    for (const BodyId id : world_.bodies()) slots = std::max(slots, id.index + 1);
+    std::vector<int> parent(static_cast<size_t>(slots));
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    std::set<int> held;
+    for (const JointId id : joints_) {
+      held.insert(world_.jointDef(id).bodyA.index);
+      held.insert(world_.jointDef(id).bodyB.index);
+    }
+    const std::vector<ContactInfo> contacts = world_.contacts();
+    for (const ContactInfo& c : contacts) {
+      const Body& a = world_.body(c.bodyA);
+      const Body& b = world_.body(c.bodyB);
+      if (a.type == BodyType::Kinematic) held.insert(c.bodyB.index);
+      if (b.type == BodyType::Kinematic) held.insert(c.bodyA.index);
+      if (a.type == BodyType::Dynamic && b.type == BodyType::Dynamic) {
+        parent[find(c.bodyA.index)] = find(c.bodyB.index);
+      }
+    }
+    std::set<int> heldRoots;
+    for (const int slot : held) heldRoots.insert(find(slot));
+    double deepest = 0.0;
+    for (const ContactInfo& c : contacts) {
+      const int slot = world_.body(c.bodyA).type == BodyType::Dynamic ? c.bodyA.index : c.bodyB.index;
+      if (heldRoots.count(find(slot))) continue;
+      deepest = std::max(deepest, -c.separation);
+    }
+    return deepest;
+  }
+
+  void quietPhase() {
+    wrenches_.clear();
+    for (const JointId id : joints_) {
+      const JointDef& def = world_.jointDef(id);
+      if (def.type == JointType::Revolute || def.type == JointType::Prismatic) {
+        world_.setJointMotor(id, false, 0.0, 0.0);
+      }
+    }
+    for (const auto& [name, id] : bodies_) {
+      if (world_.body(id).type == BodyType::Kinematic) world_.setVelocity(id, Vec2::Zero(), 0.0);
+    }
+    log("quiet: motors off, kinematic bodies stopped");
+    // First let spawned overlaps come apart (the position passes lift bodies out of each other,
+    // which adds potential energy); then nothing may add energy.
+    constexpr int kSettle = 100;
+    double reference = 0.0, budget = 0.0, scale = 0.0, earlyOverlap = 0.0;
+    for (int step = 0; step < kQuietSteps && report_.violations.empty(); ++step) {
+      stepAndCheck();
+      if (step == kSettle) {
+        reference = energy();
+        budget = springEnergy();
+        // 1 % of lifting every body across the arena, plus 1 % of the motion now.
+        for (const auto& [name, id] : bodies_) {
+          const Body& b = world_.body(id);
+          if (b.type == BodyType::Dynamic) {
+            scale += b.mass * (world_.settings().gravity.norm() * kHeight +
+                               0.5 * b.linearVelocity.squaredNorm());
+          }
+        }
+      }
+      if (step > kSettle) {
+        ++report_.checks;
+        const double e = energy();
+        if (e > reference + budget + 0.01 * scale + 1e-6) {
+          char text[160];
+          std::snprintf(text, sizeof(text),
+                        "energy grew from %.6g J to %.6g J with nothing doing work (springs held "
+                        "at most %.3g J)", reference, e, budget);
+          violation(text);
+        }
+      }
+      if (step == kQuietSteps - 101) earlyOverlap = deepestFreeOverlap();
+    }
+    if (!report_.violations.empty()) return;
+    ++report_.checks;
+    const double lateOverlap = deepestFreeOverlap();
+    constexpr double kDeep = 0.05;  // m, ten slops
+    if (lateOverlap > kDeep && lateOverlap > 0.9 * earlyOverlap) {
+      violation("a resting pile still overlaps by " + std::to_string(lateOverlap) +
+                " m (" + std::to_string(earlyOverlap) + " m 100 steps before)");
+    }
+  }
+
+  Options options_;
+  std::mt19937_64 random_;
+  World world_;
+  Report report_;
+  std::map<std::string, BodyId> bodies_;
+  std::vector<JointId> joints_;
+  std::vector<Wrench> wrenches_;
+  int nextName_ = 0;
+};
+
+}  // namespace
+
+std::string Report::summary(const Options& options) const {
+  std::ostringstream out;
+  out << "soak seed " << options.seed << " solver " << solverName(options.solver) << " threads "
+      << options.threads << (options.gravity ? "" : " top-down") << ": " << steps << " steps, "
+      << edits << " edits (" << badRefused << " bad, refused), up to " << maxBodies
+      << " bodies and " << maxJoints << " joints, " << checks << " checks, "
+      << violations.size() << " violations";
+  if (!violations.empty()) out << "; first: " << violations.front();
+  return out.str();
+}
+
+Report run(const Options& options) { return Soak(options).run(); }
+
+}  // namespace soak
+}  // namespace impulse2d
