@@ -95,7 +95,12 @@ class World {
   size_t jointCount() const;
 
   // --- changing state (each wakes the body) ---
+  /// Places the body's origin. Dynamic bodies rigidly welded to it (weld joints of frequency 0,
+  /// directly or through others) move with it, so the assembly stays whole; false, and nothing
+  /// moves, when one of them would leave kMaxCoordinate.
   bool setTransform(BodyId id, const Vec2& position, double angle);
+  /// Sets the velocity of the body's centre of mass and its turn rate; the dynamic bodies rigidly
+  /// welded to it take the same rigid motion.
   bool setVelocity(BodyId id, const Vec2& linear, double angular);
   /// A force (N) at a world point, held until the end of the next step.
   bool applyForce(BodyId id, const Vec2& force, const Vec2& worldPoint);

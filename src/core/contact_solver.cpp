@@ -26,11 +26,13 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     if (m.pointCount == 0) continue;
     // Asleep, or resting on something that cannot move.
     if (!bodies.isActive(contact.bodyA) && !bodies.isActive(contact.bodyB)) continue;
+    const int entryA = bodies.entryOf(contact.bodyA), entryB = bodies.entryOf(contact.bodyB);
+    if (entryA == entryB) continue;  // two members of one welded cluster
     ContactConstraint& c = constraints_.emplace_back();  // built in place: no copies
     ContactConstraintExtra& extra = extras_.emplace_back();
     extra.contact = &contact;
-    c.a = bodies.entryOf(contact.bodyA);
-    c.b = bodies.entryOf(contact.bodyB);
+    c.a = entryA;
+    c.b = entryB;
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
     c.blockSolve = false;

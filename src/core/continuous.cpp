@@ -101,9 +101,26 @@ void WorldImpl::solveContinuous() {
         }
       }
     });
+    if (fast.cluster >= 0) {
+      double& first = fastClusters[fast.cluster].impact;
+      first = std::min(first, impact);
+      continue;
+    }
     if (impact >= 1.0) continue;
     body.center = (1.0 - impact) * sweep.c0 + impact * sweep.c1;
     body.angle = (1.0 - impact) * sweep.a0 + impact * sweep.a1;
+    syncTransform(body);
+  }
+  // A welded cluster stops whole at the first impact of any member: each member where the
+  // cluster's rigid motion had carried it by then.
+  for (const FastBody& fast : fastBodies) {
+    if (fast.cluster < 0 || fastClusters[fast.cluster].impact >= 1.0) continue;
+    const FastCluster& cluster = fastClusters[fast.cluster];
+    const double t = cluster.impact;
+    Body& body = bodies.items[fast.slot];
+    body.center = cluster.pivot0 + t * cluster.move +
+                  Rot(t * cluster.turn).apply(Vec2(fast.startCenter - cluster.pivot0));
+    body.angle = fast.startAngle + t * cluster.turn;
     syncTransform(body);
   }
 }

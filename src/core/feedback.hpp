@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impulse2d {
 
@@ -17,6 +18,10 @@ struct Feedback {
   double rate = 0.0;  // 1/s
   double massScale = 1.0;
   double impulseScale = 0.0;
+  /// m/s, the fastest a joint's feedback pushes an error apart (WorldDef::maxPushVelocity, as
+  /// for contacts). Uncapped, a joint set that cannot all be met (a loop that does not close, a
+  /// pin anchored 10 m away) was pushed at rate x error, hundreds of m/s, for ever.
+  double maxPush = std::numeric_limits<double>::infinity();
 };
 
 /// A damped spring of `hertz` and damping ratio `zeta` on a row of any effective mass m,

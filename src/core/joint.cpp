@@ -24,19 +24,30 @@ Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
 
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB) {
-  a.center -= a.invMass * p;
-  turnBy(a, -a.invInertia * angularA);
-  b.center += b.invMass * p;
-  turnBy(b, b.invInertia * angularB);
+  // Each row's error is clamped, but the correction that removes it is K^-1 times it, and an
+  // ill-conditioned K (anchors far out on light bodies, a long rail) made it move a body
+  // kilometres in one pass. So the whole correction shrinks until neither body moves more than
+  // kMaxJointLinearCorrection nor turns more than kMaxAngularCorrection.
+  const double moved = std::max(a.invMass, b.invMass) * p.norm();
+  const double turned =
+      std::max(std::abs(a.invInertia * angularA), std::abs(b.invInertia * angularB));
+  double scale = 1.0;
+  if (moved > kMaxJointLinearCorrection) scale = kMaxJointLinearCorrection / moved;
+  if (turned * scale > kMaxAngularCorrection) scale = kMaxAngularCorrection / turned;
+  if (!std::isfinite(moved + turned)) return;
+  a.center -= scale * a.invMass * p;
+  turnBy(a, -scale * a.invInertia * angularA);
+  b.center += scale * b.invMass * p;
+  turnBy(b, scale * b.invInertia * angularB);
 }
 
-double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb) {
+double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb, double maxRate) {
   if (c > 0.0) {
     *rowFb = Feedback();
     return c / dt;
   }
   *rowFb = fb;
-  return fb.rate * c;
+  return std::max(fb.rate * c, -maxRate);
 }
 
 Softness softness(double frequency, double dampingRatio, double effectiveMass, double dt) {
@@ -105,9 +116,7 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
   }
 }
 
-namespace {
-
-void applyWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
+void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
   switch (joint.def.type) {
     case JointType::Revolute:
       warmStartRevolute(joint, a, b);
@@ -123,6 +132,8 @@ void applyWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
       break;
   }
 }
+
+namespace {
 
 // How far past the motion limits the velocity change from `before` to `after` goes: its square
 // over the limit's square, the larger of the linear and the angular one.
@@ -147,7 +158,7 @@ void scaleJointImpulses(Joint& joint, double scale) {
 
 void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits) {
   SolverBody trialA = a, trialB = b;
-  applyWarmStart(joint, trialA, trialB);
+  applyJointWarmStart(joint, trialA, trialB);
   const double excess =
       std::max(excessSquared(a, trialA, limits), excessSquared(b, trialB, limits));
   if (excess <= 1.0) {
@@ -160,7 +171,7 @@ void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimi
   // whose impulse grew step after step while the motion limits ate its effect. Warm started
   // whole, it would grow on without bound; so it starts from what the limits allow.
   scaleJointImpulses(joint, std::isfinite(excess) ? 1.0 / std::sqrt(excess) : 0.0);
-  applyWarmStart(joint, a, b);
+  applyJointWarmStart(joint, a, b);
 }
 
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {

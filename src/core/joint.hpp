@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <limits>
 
 #include "feedback.hpp"
@@ -38,8 +39,7 @@ JointParams paramsOf(const JointDef& def);
 struct Joint {
   JointId id;
   JointParams def;
-  int bodyA = -1, bodyB = -1;    // slot indices
-  int entryA = -1, entryB = -1;  // the bodies' SolverBodies entries, while the step solves it
+  int bodyA = -1, bodyB = -1;  // slot indices
   Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
   double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
@@ -86,6 +86,8 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
 /// Applies the impulses kept from the last step, scaled down when they would change a body's
 /// velocity by more than the motion limits of this pass allow.
 void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits);
+/// Applies the impulses kept from the last step as they are.
+void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b);
 /// Scales every accumulated impulse of the joint.
 void scaleJointImpulses(Joint& joint, double scale);
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
@@ -118,9 +120,39 @@ void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double an
                           double angularB);
 /// Target rate of a one-sided limit row whose position error is c (>= 0 means within): a limit
 /// not yet reached may be approached within the step (speculative, rigid); one already passed is
-/// pushed back with the pass's feedback (none with NGS: its position pass does it). `rowFb`
-/// receives the feedback the row uses.
-double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb);
+/// pushed back with the pass's feedback (none with NGS: its position pass does it), at most at
+/// maxRate. `rowFb` receives the feedback the row uses.
+double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb, double maxRate);
+
+/// The target rate of an equality row with linear position error c (m): -rate c, at most
+/// fb.maxPush either way.
+inline double linearBias(double c, const Feedback& fb) {
+  if (!(fb.rate > 0.0)) return 0.0;
+  return std::clamp(-fb.rate * c, -fb.maxPush, fb.maxPush);
+}
+/// The same for a point's error (a gap between two anchors): at most fb.maxPush long.
+inline Vec2 pointBias(const Vec2& gap, const Feedback& fb) {
+  if (!(fb.rate > 0.0)) return Vec2::Zero();
+  Vec2 bias = -fb.rate * gap;
+  const double speed = bias.norm();
+  if (speed > fb.maxPush) bias *= fb.maxPush / speed;
+  return bias;
+}
+/// The fastest an angular row's feedback turns the bodies (rad/s): a point `reach` from the
+/// centre of mass then moves at most fb.maxPush, and nothing turns faster than pi rad/s.
+inline double maxAngularPush(const Feedback& fb, double reach) {
+  return std::min(kPi, fb.maxPush / std::max(reach, 1e-9));
+}
+/// The target rate of an angular equality row with error c (rad).
+inline double angularBias(double c, const Feedback& fb, double reach) {
+  if (!(fb.rate > 0.0)) return 0.0;
+  const double cap = maxAngularPush(fb, reach);
+  return std::clamp(-fb.rate * c, -cap, cap);
+}
+/// How far the joint's anchors lie from their bodies' centres of mass (the larger).
+inline double anchorReach(const Vec2& rA, const Vec2& rB) {
+  return std::max(rA.norm(), rB.norm());
+}
 
 /// A soft (spring) row. With effective mass m, stiffness k = m w^2 and damping c = 2 m zeta w
 /// (w = 2 pi frequency), implicit Euler over one step asks the impulse L to satisfy

@@ -77,14 +77,16 @@ void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
     joint.springGamma = soft.gamma;
     joint.springMass = k + soft.gamma > 0.0 ? 1.0 / (k + soft.gamma) : 0.0;
     joint.lengthBias = -soft.biasRate * c;
-    joint.lowerBias = limitBias(rod.length - joint.def.minLength, fb, dt, &joint.lowerFeedback);
+    joint.lowerBias =
+        limitBias(rod.length - joint.def.minLength, fb, dt, &joint.lowerFeedback, fb.maxPush);
     // An infinite maxLength never binds: its row is skipped, and inf never enters a bias.
     joint.upperBias =
         std::isfinite(joint.def.maxLength)
-            ? limitBias(joint.def.maxLength - rod.length, fb, dt, &joint.upperFeedback)
+            ? limitBias(joint.def.maxLength - rod.length, fb, dt, &joint.upperFeedback,
+                        fb.maxPush)
             : 0.0;
   } else {
-    joint.lengthBias = fb.rate > 0.0 ? -fb.rate * c : 0.0;
+    joint.lengthBias = linearBias(c, fb);
     joint.lowerImpulse = joint.upperImpulse = 0.0;
   }
 }

@@ -24,9 +24,12 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
   joint.angle = b.angle - a.angle - joint.referenceAngle;
 
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pointBias = fb.rate > 0.0 ? Vec2(-fb.rate * gap) : Vec2::Zero();
-  joint.lowerBias = limitBias(joint.angle - joint.def.lower, fb, dt, &joint.lowerFeedback);
-  joint.upperBias = limitBias(joint.def.upper - joint.angle, fb, dt, &joint.upperFeedback);
+  joint.pointBias = pointBias(gap, fb);
+  const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
+  joint.lowerBias =
+      limitBias(joint.angle - joint.def.lower, fb, dt, &joint.lowerFeedback, maxTurn);
+  joint.upperBias =
+      limitBias(joint.def.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
   if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }

@@ -60,7 +60,7 @@ void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb,
   joint.angle = b.angle - a.angle - joint.referenceAngle;
   const Eigen::Matrix3d k = blockMatrix(a, b, joint.rA, joint.rB);
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pointBias = fb.rate > 0.0 ? Vec2(-fb.rate * gap) : Vec2::Zero();
+  joint.pointBias = pointBias(gap, fb);
 
   if (isSoft(joint)) {
     joint.pointMass = safeInverse(k.topLeftCorner<2, 2>());
@@ -73,7 +73,7 @@ void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb,
     joint.angularBias = -soft.biasRate * joint.angle;
   } else {
     joint.blockMass = safeInverse3(k);
-    joint.angularBias = fb.rate > 0.0 ? -fb.rate * joint.angle : 0.0;
+    joint.angularBias = angularBias(joint.angle, fb, anchorReach(joint.rA, joint.rB));
   }
 }
 

@@ -19,7 +19,30 @@ void SolverBodies::add(const Body& body, int slot, bool readOnly) {
   loads_.push_back(load);
 }
 
-void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive) {
+void SolverBodies::addCluster(const WeldClusters& clusters, int cluster) {
+  const std::vector<Body>& bodies = *bodies_;
+  const int entry = indexOfSlot_[clusters.root(cluster)];
+  const RigidCluster r = clusters.combine(cluster, bodies);
+  SolverBody& e = entries_[entry];
+  e = SolverBody();  // the cluster's frame: at its centre of mass, angle 0
+  e.linearVelocity = r.velocity;
+  e.angularVelocity = r.angularVelocity;
+  e.invMass = 1.0 / r.mass;
+  e.invInertia = 1.0 / r.inertia;
+  e.center = r.center;
+  loads_[entry] = {r.force, r.torque, r.linearDamping, r.angularDamping, r.velocity,
+                   r.angularVelocity};
+  clusterOfEntry_[entry] = cluster;
+  for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
+    memberOfSlot_[*m] = static_cast<int>(members_.size());
+    indexOfSlot_[*m] = entry;
+    members_.push_back(memberStart(bodies[*m], *m, r.center));
+  }
+  memberFirst_.push_back(static_cast<int>(members_.size()));
+}
+
+void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
+                          const WeldClusters& clusters) {
   bodies_ = &bodies;
   entries_.clear();
   loads_.clear();
@@ -27,18 +50,56 @@ void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<cha
   indexOfSlot_.assign(bodies.size(), kNone);
   for (const BodyType type : {BodyType::Dynamic, BodyType::Kinematic}) {
     for (size_t i = 0; i < bodies.size(); ++i) {
-      if (alive[i] && bodies[i].type == type && bodies[i].awake) {
-        add(bodies[i], static_cast<int>(i), false);
-      }
+      if (!alive[i] || bodies[i].type != type || !bodies[i].awake) continue;
+      const int cluster = clusters.clusterOf(static_cast<int>(i));
+      if (cluster >= 0 && clusters.root(cluster) != static_cast<int>(i)) continue;
+      add(bodies[i], static_cast<int>(i), false);
     }
     if (type == BodyType::Dynamic) dynamicCount_ = static_cast<int>(entries_.size());
   }
   movingCount_ = static_cast<int>(entries_.size());
+  members_.clear();
+  memberFirst_.assign(1, 0);
+  memberOfSlot_.clear();
+  clusterOfEntry_.clear();
+  if (clusters.any()) {
+    memberOfSlot_.assign(bodies.size(), -1);
+    clusterOfEntry_.assign(static_cast<size_t>(dynamicCount_), -1);
+    for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c);
+  }
 }
 
 int SolverBodies::entryOf(int slot) {
   if (indexOfSlot_[slot] == kNone) add((*bodies_)[slot], slot, true);
   return indexOfSlot_[slot];
+}
+
+SolverBody SolverBodies::view(int slot) {
+  SolverBody e = entries_[entryOf(slot)];
+  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {
+    const MemberStart& m = members_[memberOfSlot_[slot]];
+    e.q = m.q0 * e.q;  // the cluster's entry turns from 0
+    e.angle += m.angle0;
+    e.localCenter = m.viewLocalCenter;
+  }
+  return e;
+}
+
+void SolverBodies::store(int slot, const SolverBody& view, bool pose) {
+  const int entry = indexOfSlot_[slot];
+  if (entry >= dynamicCount_) return;  // kinematic or read-only: nothing moves them
+  SolverBody& e = entries_[entry];
+  e.linearVelocity = view.linearVelocity;
+  e.angularVelocity = view.angularVelocity;
+  if (!pose) return;
+  e.center = view.center;
+  e.angle = view.angle;
+  e.q = view.q;
+  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {
+    const MemberStart& m = members_[memberOfSlot_[slot]];
+    e.angle -= m.angle0;
+    e.q = m.q0.inverseTimes(view.q);
+  }
 }
 
 void SolverBodies::holdKinematicVelocities() {
@@ -49,30 +110,30 @@ void SolverBodies::holdKinematicVelocities() {
 }
 
 void SolverBodies::storeMotion(std::vector<Body>& bodies) const {
-  storePoses(bodies, movingCount_);
-  for (int e = 0; e < dynamicCount_; ++e) {
-    Body& body = bodies[slots_[e]];
-    body.linearVelocity = entries_[e].linearVelocity;
-    body.angularVelocity = entries_[e].angularVelocity;
-  }
-}
-
-void SolverBodies::loadPoses(const std::vector<Body>& bodies) {
   for (int e = 0; e < movingCount_; ++e) {
-    const Body& body = bodies[slots_[e]];
-    entries_[e].center = body.center;
-    entries_[e].angle = body.angle;
-    entries_[e].q = body.xf.q;
-  }
-}
-
-void SolverBodies::storePoses(std::vector<Body>& bodies, int count) const {
-  for (int e = 0; e < count; ++e) {
+    const SolverBody& entry = entries_[e];
+    const auto [first, last] = membersOf(e);
+    for (int k = first; k < last; ++k) {  // a cluster: its members, rigidly
+      const MemberStart& m = members_[k];
+      Body& body = bodies[m.slot];
+      body.center = entry.center + entry.q.apply(m.offset);
+      body.angle = m.angle0 + entry.angle;
+      body.xf.q = Rot(body.angle);
+      body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+      body.linearVelocity =
+          entry.linearVelocity + cross(entry.angularVelocity, Vec2(body.center - entry.center));
+      body.angularVelocity = entry.angularVelocity;
+    }
+    if (first < last) continue;
     Body& body = bodies[slots_[e]];
-    body.center = entries_[e].center;
-    body.angle = entries_[e].angle;
+    body.center = entry.center;
+    body.angle = entry.angle;
     body.xf.q = Rot(body.angle);
     body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+    if (e < dynamicCount_) {
+      body.linearVelocity = entry.linearVelocity;
+      body.angularVelocity = entry.angularVelocity;
+    }
   }
 }
 

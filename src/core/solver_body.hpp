@@ -15,7 +15,10 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
+
+#include "weld_clusters.hpp"
 
 namespace impulse2d {
 
@@ -75,8 +78,11 @@ inline void turnBy(SolverBody& body, double angle) {
 class SolverBodies {
  public:
   /// Starts a step: one entry for every living, awake, non-static body (dynamic first), in slot
-  /// order. Entries of other bodies are added by entryOf() as constraints need them.
-  void gather(const std::vector<Body>& bodies, const std::vector<char>& alive);
+  /// order, except that each welded cluster (weld_clusters.hpp) is one entry, its root's, which
+  /// every member's slot maps to. Entries of other bodies are added by entryOf() as constraints
+  /// need them.
+  void gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
+              const WeldClusters& clusters);
   /// The entry of the body in `slot`, or -1 when the step does not move it.
   int movingEntryOf(int slot) const {
     return indexOfSlot_[slot] < movingCount_ ? indexOfSlot_[slot] : -1;
@@ -96,19 +102,31 @@ class SolverBodies {
   int slotOf(int entry) const { return slots_[entry]; }
   const SolverBodyLoad& load(int entry) const { return loads_[entry]; }
 
+  /// A joint's view of the body in `slot` (see entryOf): its entry, except that a member of a
+  /// cluster sees its cluster's entry from its own frame (MemberStart::viewLocalCenter).
+  SolverBody view(int slot);
+  /// Writes a view back: the velocity of a dynamic entry, and its pose when `pose`.
+  void store(int slot, const SolverBody& view, bool pose);
+  /// The members of the cluster whose entry is `entry` ([first, last) of member()), or an empty
+  /// range for a body alone.
+  std::pair<int, int> membersOf(int entry) const {
+    if (clusterOfEntry_.empty() || entry >= dynamicCount_ || clusterOfEntry_[entry] < 0) {
+      return {0, 0};
+    }
+    return {memberFirst_[clusterOfEntry_[entry]], memberFirst_[clusterOfEntry_[entry] + 1]};
+  }
+  const MemberStart& member(int index) const { return members_[index]; }
+
   /// Gives the kinematic entries their prescribed velocities back: impulses cannot change them
   /// (infinite mass) unless they are not finite, and then they must not move the body.
   void holdKinematicVelocities();
-  /// Writes the poses of the moving entries, and the velocities of the dynamic ones, back.
+  /// Writes the poses of the moving entries, and the velocities of the dynamic ones, back; the
+  /// members of a cluster rigidly with it.
   void storeMotion(std::vector<Body>& bodies) const;
-  /// Re-reads the poses of the moving entries (after continuous collision moved bodies).
-  void loadPoses(const std::vector<Body>& bodies);
-  /// Writes the poses of the dynamic entries back (position passes move only those).
-  void storeDynamicPoses(std::vector<Body>& bodies) const { storePoses(bodies, dynamicCount_); }
 
  private:
   void add(const Body& body, int slot, bool readOnly);
-  void storePoses(std::vector<Body>& bodies, int count) const;
+  void addCluster(const WeldClusters& clusters, int cluster);
 
   const std::vector<Body>* bodies_ = nullptr;
   std::vector<SolverBody> entries_;
@@ -117,6 +135,11 @@ class SolverBodies {
   static constexpr int kNone = std::numeric_limits<int>::max();
   std::vector<int> indexOfSlot_;  // by body slot; kNone when the body has no entry
   int dynamicCount_ = 0, movingCount_ = 0;
+  // Welded clusters; all empty when there are none.
+  std::vector<MemberStart> members_;
+  std::vector<int> memberFirst_;     // by cluster, into members_ (one past the last at the end)
+  std::vector<int> memberOfSlot_;    // by body slot, into members_, or -1
+  std::vector<int> clusterOfEntry_;  // by dynamic entry, or -1
 };
 
 }  // namespace impulse2d

@@ -8,7 +8,7 @@ namespace impulse2d {
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
                            const Vec2& gravity, double h, const MotionLimits& limits,
-                           StepWorkers& workers) {
+                           const WeldClusters& clusters, StepWorkers& workers) {
   bodies_ = &bodies;
   limits_ = limits;
   const int slots = static_cast<int>(bodies.size());
@@ -16,6 +16,8 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   auto rowOf = [&](int i) {  // 0: none, 1: a dynamic row, 2: a kinematic one
     const Body& body = bodies[i];
     if (!alive[i] || !body.awake || body.type == BodyType::Static) return 0;
+    const int cluster = clusters.clusterOf(i);
+    if (cluster >= 0 && clusters.root(cluster) != i) return 0;  // the root's row moves it
     return body.type == BodyType::Dynamic ? 1 : 2;
   };
   // Count each block's rows, so that every block knows where its own go: dynamic rows first,
@@ -53,6 +55,15 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   overflowed_.clear();
   for (const std::vector<int>& list : overflowedOfBlock_) {
     overflowed_.insert(overflowed_.end(), list.begin(), list.end());
+  }
+  members_.clear();
+  memberFirst_.assign(1, 0);
+  memberOfSlot_.clear();
+  clusterOfEntry_.clear();
+  if (clusters.any()) {
+    memberOfSlot_.assign(bodies.size(), -1);
+    clusterOfEntry_.assign(static_cast<size_t>(movingCount_), -1);
+    for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c, gravity, h);
   }
   // The identity row and the sinks.
   std::fill(states_.begin() + movingCount_, states_.end(), BodyState());
@@ -101,6 +112,52 @@ bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravi
     start.kinematicAngularVelocity = body.angularVelocity;
   }
   return true;
+}
+
+void SubstepBodies::addCluster(const WeldClusters& clusters, int cluster, const Vec2& gravity,
+                               double h) {
+  const std::vector<Body>& bodies = *bodies_;
+  const int root = clusters.root(cluster);
+  const int entry = entryOfSlot_[root];
+  const RigidCluster r = clusters.combine(cluster, bodies);
+  BodyState& state = states_[entry];
+  state = BodyState();
+  state.vx = r.velocity.x();
+  state.vy = r.velocity.y();
+  state.w = r.angularVelocity;
+  BodySim& sim = sims_[entry];
+  sim.center0 = r.center;
+  sim.invMass = 1.0 / r.mass;
+  sim.invInertia = 1.0 / r.inertia;
+  BodyStart& start = starts_[entry];
+  start = BodyStart();  // the cluster's frame: at its centre of mass, angle 0
+  start.slot = root;
+  BodyLoad& load = loads_[entry];
+  load = BodyLoad();
+  load.dvx = h * (gravity.x() + sim.invMass * r.force.x());
+  load.dvy = h * (gravity.y() + sim.invMass * r.force.y());
+  load.dw = h * sim.invInertia * r.torque;
+  if (r.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * r.linearDamping);
+  if (r.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * r.angularDamping);
+  clusterOfEntry_[entry] = cluster;
+  for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
+    memberOfSlot_[*m] = static_cast<int>(members_.size());
+    entryOfSlot_[*m] = entry;
+    members_.push_back(memberStart(bodies[*m], *m, r.center));
+  }
+  memberFirst_.push_back(static_cast<int>(members_.size()));
+  const bool finite = std::isfinite(state.vx + state.vy + state.w) &&
+                      std::isfinite(load.dvx + load.dvy + load.dw) &&
+                      std::isfinite(sim.invMass + sim.invInertia) && isFinite(sim.center0);
+  if (!finite) {  // as add(): held still, and every member removed at the end of the step
+    state = BodyState();
+    sim.invMass = sim.invInertia = 0.0;
+    sim.center0 = bodies[root].center;
+    load = BodyLoad();
+    for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
+      overflowed_.push_back(*m);
+    }
+  }
 }
 
 void SubstepBodies::integrateVelocities(int begin, int end) {
@@ -156,6 +213,12 @@ SolverBody SubstepBodies::view(int slot) const {
   e.angle = start.angle0 + s.turned;
   e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
   e.localCenter = start.localCenter;
+  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {  // its cluster, seen from it
+    const MemberStart& m = members_[memberOfSlot_[slot]];
+    e.angle = m.angle0 + s.turned;
+    e.q = m.q0 * Rot::fromCosSin(s.qc, s.qs);
+    e.localCenter = m.viewLocalCenter;
+  }
   return e;
 }
 
@@ -168,17 +231,42 @@ void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
   s.w = view.angularVelocity;
   if (!pose) return;
   const BodySim& sim = sims_[entry];
-  const BodyStart& start = starts_[entry];
+  double angle0 = starts_[entry].angle0;
+  Rot q0 = starts_[entry].q0;
+  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {
+    angle0 = members_[memberOfSlot_[slot]].angle0;
+    q0 = members_[memberOfSlot_[slot]].q0;
+  }
   s.dx = view.center.x() - sim.center0.x();
   s.dy = view.center.y() - sim.center0.y();
-  s.turned = view.angle - start.angle0;
-  const Rot q = start.q0.inverseTimes(view.q);
+  s.turned = view.angle - angle0;
+  const Rot q = q0.inverseTimes(view.q);
   s.qc = q.c;
   s.qs = q.s;
 }
 
+void SubstepBodies::finishMember(std::vector<Body>& bodies, int entry,
+                                 const MemberStart& m) const {
+  const BodyState& s = states_[entry];
+  const Vec2 center = sims_[entry].center0 + Vec2(s.dx, s.dy);
+  Body& body = bodies[m.slot];
+  body.center = center + Rot::fromCosSin(s.qc, s.qs).apply(m.offset);
+  body.angle = m.angle0 + s.turned;
+  body.xf.q = Rot(body.angle);
+  body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+  double vx = s.vx, vy = s.vy, w = s.w;
+  limits_.apply(vx, vy, w);
+  body.linearVelocity = Vec2(vx, vy) + cross(w, Vec2(body.center - center));
+  body.angularVelocity = w;
+}
+
 void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const {
   for (int e = begin; e < std::min(end, movingCount_); ++e) {
+    const auto [first, last] = membersOf(e);
+    if (first < last) {
+      for (int k = first; k < last; ++k) finishMember(bodies, e, members_[k]);
+      continue;
+    }
     const BodyState& s = states_[e];
     const BodySim& sim = sims_[e];
     const BodyStart& start = starts_[e];

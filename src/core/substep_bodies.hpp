@@ -16,11 +16,13 @@
 #include <impulse2d/body.hpp>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "motion_limits.hpp"
 #include "solver_body.hpp"
 #include "step_workers.hpp"
+#include "weld_clusters.hpp"
 
 namespace impulse2d {
 
@@ -64,8 +66,10 @@ class SubstepBodies {
   /// first, in slot order), then the identity row and `workers` sinks.
   /// Dynamic bodies move within `limits` (motion_limits.hpp). A body whose velocity or load is
   /// not finite is held still with infinite mass instead, and listed in overflowed().
+  /// Each welded cluster gets one row, its root's, which every member's slot reads and writes.
   void gather(const std::vector<Body>& bodies, const std::vector<char>& alive, const Vec2& gravity,
-              double h, const MotionLimits& limits, StepWorkers& workers);
+              double h, const MotionLimits& limits, const WeldClusters& clusters,
+              StepWorkers& workers);
   const std::vector<int>& overflowed() const { return overflowed_; }
 
   /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).
@@ -105,6 +109,14 @@ class SubstepBodies {
   /// `pose` (position passes).
   void store(int slot, const SolverBody& view, bool pose);
 
+  /// The members of the cluster whose row is `entry` ([begin, end) of members()), or an empty
+  /// range for a body alone.
+  std::pair<int, int> membersOf(int entry) const {
+    if (clusterOfEntry_.empty() || clusterOfEntry_[entry] < 0) return {0, 0};
+    return {memberFirst_[clusterOfEntry_[entry]], memberFirst_[clusterOfEntry_[entry] + 1]};
+  }
+  const MemberStart& member(int index) const { return members_[index]; }
+
   /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin, end) back to the
   /// bodies.
   void finish(std::vector<Body>& bodies, int begin, int end) const;
@@ -113,6 +125,10 @@ class SubstepBodies {
   static constexpr int kSlotsPerBlock = 1024;
   /// Fills the entry's rows; false for a body held still (see gather()).
   bool add(const Body& body, int slot, int entry, const Vec2& gravity, double h);
+  /// Fills a cluster's row (its root's entry) and its members' starts.
+  void addCluster(const WeldClusters& clusters, int cluster, const Vec2& gravity, double h);
+  /// A member's pose and velocity from its cluster's row.
+  void finishMember(std::vector<Body>& bodies, int entry, const MemberStart& m) const;
 
   const std::vector<Body>* bodies_ = nullptr;
   std::vector<BodyState> states_;
@@ -125,6 +141,11 @@ class SubstepBodies {
   std::vector<int> overflowed_;  // slots, in slot order
   int dynamicCount_ = 0, movingCount_ = 0;
   MotionLimits limits_;
+  // Welded clusters; all empty when there are none.
+  std::vector<MemberStart> members_;
+  std::vector<int> memberFirst_;     // by cluster, into members_ (one past the last at the end)
+  std::vector<int> memberOfSlot_;    // by body slot, into members_, or -1
+  std::vector<int> clusterOfEntry_;  // by entry, or -1
 };
 
 }  // namespace impulse2d

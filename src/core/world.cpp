@@ -386,27 +386,52 @@ size_t World::jointCount() const { return impl_->joints.count(); }
 
 bool World::setTransform(BodyId id, const Vec2& position, double angle) {
   if (!isValid(id) || !isFinite(position) || !std::isfinite(angle)) return false;
-  if (std::abs(position.x()) > kMaxCoordinate || std::abs(position.y()) > kMaxCoordinate) {
-    return false;
+  WorldImpl& w = *impl_;
+  // The bodies rigidly welded to it go with it, so the welds stay closed (the solver moves them
+  // as one body and would never close them again).
+  const std::vector<int> group =
+      rigidlyWeldedTo(id.index, w.bodies.items, w.joints.items, w.jointsOfBody);
+  const Transform from = w.bodies.items[id.index].xf;
+  const Transform to(position, Rot(angle));
+  const double turn = angle - w.bodies.items[id.index].angle;
+  std::vector<std::pair<Vec2, double>> poses;
+  for (const int slot : group) {
+    const Body& member = w.bodies.items[slot];
+    const Vec2 p = slot == id.index ? position : to.apply(from.applyInverse(member.xf.p));
+    if (std::abs(p.x()) > kMaxCoordinate || std::abs(p.y()) > kMaxCoordinate) return false;
+    poses.emplace_back(p, slot == id.index ? angle : member.angle + turn);
   }
-  Body& body = impl_->bodies.items[id.index];
-  body.angle = angle;
-  body.xf = Transform(position, Rot(angle));
-  body.center = body.xf.apply(body.localCenter);
-  impl_->updateProxies(body, true);
-  impl_->wakeBody(body);
-  if (body.type == BodyType::Static) impl_->staticBodiesChanged();
+  for (size_t k = 0; k < group.size(); ++k) {
+    Body& body = w.bodies.items[group[k]];
+    body.angle = poses[k].second;
+    body.xf = Transform(poses[k].first, Rot(body.angle));
+    body.center = body.xf.apply(body.localCenter);
+    w.updateProxies(body, true);
+    w.wakeBody(body);
+    if (body.type == BodyType::Static) w.staticBodiesChanged();
+  }
   return true;
 }
 
 bool World::setVelocity(BodyId id, const Vec2& linear, double angular) {
   if (!isValid(id) || !isFinite(linear) || !std::isfinite(angular)) return false;
   if (linear.norm() > kMaxSpeed || std::abs(angular) > kMaxSpeed) return false;
-  Body& body = impl_->bodies.items[id.index];
-  if (body.type == BodyType::Static) return false;
-  body.linearVelocity = linear;
-  body.angularVelocity = angular;
-  impl_->wakeBody(body);
+  WorldImpl& w = *impl_;
+  if (w.bodies.items[id.index].type == BodyType::Static) return false;
+  // The bodies rigidly welded to it move with it, as one rigid body.
+  const std::vector<int> group =
+      rigidlyWeldedTo(id.index, w.bodies.items, w.joints.items, w.jointsOfBody);
+  const Vec2 center = w.bodies.items[id.index].center;
+  for (const int slot : group) {
+    const Vec2 v = linear + cross(angular, Vec2(w.bodies.items[slot].center - center));
+    if (v.norm() > kMaxSpeed) return false;
+  }
+  for (const int slot : group) {
+    Body& body = w.bodies.items[slot];
+    body.linearVelocity = linear + cross(angular, Vec2(body.center - center));
+    body.angularVelocity = angular;
+    w.wakeBody(body);
+  }
   return true;
 }
 

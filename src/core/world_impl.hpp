@@ -10,6 +10,8 @@
 #include "solver_body.hpp"
 #include "step_workers.hpp"
 #include "substep_bodies.hpp"
+#include "warm_start_guard.hpp"
+#include "weld_clusters.hpp"
 
 #include <impulse2d/world.hpp>
 
@@ -117,8 +119,22 @@ struct WorldImpl {
     int slot;
     Vec2 startCenter;
     double startAngle;
+    int cluster;  // into fastClusters when a member of a welded cluster, else -1
   };
   std::vector<FastBody> fastBodies;
+  // A welded cluster's rigid motion this step: its members are swept together, and stopped
+  // together at the first impact of any of them.
+  struct FastCluster {
+    Vec2 pivot0;  // its centre of mass when the step began
+    Vec2 move;    // how far the centre moved
+    double turn;  // rad
+    double impact;  // the earliest impact of any member, as a fraction of the step (1: none)
+  };
+  std::vector<FastCluster> fastClusters;
+  WeldClusters weldClusters;  // this step's (weld_clusters.hpp)
+  WarmStartGuard warmStartGuard;
+  std::vector<Joint*> guardedJoints;  // reused: the joints warmStartGuard looks at
+  std::vector<std::pair<Vec2, double>> onePassStarts;  // by dynamic entry: centre, angle
   std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
   double time = 0.0;
@@ -177,12 +193,19 @@ struct WorldImpl {
   void prepareJoints(const Feedback& fb, double dt);
   void warmStartJoints();
   void solveJointVelocities(double dt);
-  /// Moves the moving solver bodies with their velocities over h (no continuous collision
-  /// bookkeeping).
-  void moveBodies(double h);
+  /// Runs op(joint, viewA, viewB) on each active joint of the one-pass solvers and writes back
+  /// what it changed of its bodies (the poses too when `pose`).
+  template <class Op>
+  void onActiveJoints(Op op, bool pose);
   void integratePositions(double dt);
-  void solveContinuous();
   void correctPositions();
+  /// Whether a body that moved by `move` and turned by `turn` (about a point `arm` from its centre
+  /// of mass) moved far enough to skip past something: continuous collision sweeps it.
+  bool isFast(const Body& body, const Vec2& move, double turn, double arm) const;
+  /// The one-pass solvers' fast bodies, from the whole step's motion of each dynamic entry.
+  void findOnePassFastBodies();
+  void keepOutOfStatic();
+  void solveContinuous();
   void updateSleep(double dt);
   void clearForces();
   // Bodies that left kWorldExtent or stopped being finite (world_bounds.cpp).

@@ -20,18 +20,21 @@ void World::step() {
     w.findNewContacts();       // 2. newly overlapping pairs become arbiters
     w.updateContacts();        // 3. narrow phase; keep the impulses of matching contact ids
     if (usesSubsteps(w.def.solver)) {
-      w.solveSubsteps(dt);  // 4-6 in sub-steps, and 8 (world_substeps.cpp)
+      w.solveSubsteps(dt);  // 4-7 in sub-steps (world_substeps.cpp)
     } else {
-      w.solverBodies.gather(w.bodies.items, w.bodies.alive);  // 4-6 work on the solver's copy
-      w.integrateVelocities(dt);                              // 4. gravity, applied forces, damping
+      w.weldClusters.find(w.bodies.items, w.bodies.alive, w.joints.items, w.joints.alive);
+      w.solverBodies.gather(w.bodies.items, w.bodies.alive, w.weldClusters);  // 4-7 on a copy
+      w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
       w.solve(dt);               // 5. pre-step, warm start, velocity iterations, restitution
       w.integratePositions(dt);  // 6. move with the solved velocities
+      w.correctPositions();      // 7. ngs: push remaining overlaps and joint gaps apart
       w.solverBodies.storeMotion(w.bodies.items);
+      w.findOnePassFastBodies();
     }
-    w.solveContinuous();    // 7. fast bodies stop at their first impact instead of tunnelling
-    w.correctPositions();   // 8. ngs: push remaining overlaps apart
-    w.updateSleep(dt);      // 9. islands still for long enough fall asleep
-    removeEscapedBodies();  // 10. bodies that left the world are removed; lost ones reported
+    w.solveContinuous();    // 8. fast bodies stop at their first impact instead of tunnelling
+    w.keepOutOfStatic();    // 9. what a joint or a push drove deep into a static body comes out
+    w.updateSleep(dt);      // 10. islands still for long enough fall asleep
+    removeEscapedBodies();  // 11. bodies that left the world are removed; lost ones reported
     w.clearForces();
   });
   w.time += dt;
@@ -209,9 +212,8 @@ void WorldImpl::collectActiveJoints() {
     if (!joints.alive[j]) continue;
     Joint& joint = joints.items[j];
     if (!solverBodies.isActive(joint.bodyA) && !solverBodies.isActive(joint.bodyB)) continue;
+    if (weldClusters.joins(joint.bodyA, joint.bodyB)) continue;  // one rigid body already
     activeJoints.push_back(static_cast<int>(j));
-    joint.entryA = solverBodies.entryOf(joint.bodyA);
-    joint.entryB = solverBodies.entryOf(joint.bodyB);
     if (!def.warmStarting) {
       joint.pointImpulse.setZero();
       joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
@@ -219,33 +221,50 @@ void WorldImpl::collectActiveJoints() {
   }
 }
 
-void WorldImpl::prepareJoints(const Feedback& fb, double dt) {
+template <class Op>
+void WorldImpl::onActiveJoints(Op op, bool pose) {
   for (const int j : activeJoints) {
     Joint& joint = joints.items[j];
-    prepareJoint(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], def, fb, dt);
+    SolverBody a = solverBodies.view(joint.bodyA), b = solverBodies.view(joint.bodyB);
+    op(joint, a, b);
+    solverBodies.store(joint.bodyA, a, pose);
+    solverBodies.store(joint.bodyB, b, pose);
   }
+}
+
+void WorldImpl::prepareJoints(const Feedback& fb, double dt) {
+  onActiveJoints([&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, fb, dt); },
+                 false);
 }
 
 void WorldImpl::warmStartJoints() {
   const MotionLimits limits = MotionLimits::of(def, def.timeStep);
-  for (const int j : activeJoints) {
-    Joint& joint = joints.items[j];
-    warmStartJoint(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], limits);
-  }
+  onActiveJoints([&](Joint& j, SolverBody& a, SolverBody& b) { warmStartJoint(j, a, b, limits); },
+                 false);
 }
 
 void WorldImpl::solveJointVelocities(double dt) {
-  for (const int j : activeJoints) {
-    Joint& joint = joints.items[j];
-    solveJointVelocity(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], dt);
-  }
+  onActiveJoints([&](Joint& j, SolverBody& a, SolverBody& b) { solveJointVelocity(j, a, b, dt); },
+                 false);
 }
 
 void WorldImpl::solve(double dt) {
   collectActiveJoints();
-  contactSolver.prepare(contacts, solverBodies, def, dt);
   Feedback fb;  // NGS: no bias, its position pass corrects the drift
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
+  fb.maxPush = def.maxPushVelocity;
+  guardedJoints.clear();
+  for (const int j : activeJoints) guardedJoints.push_back(&joints.items[j]);
+  warmStartGuard.run(
+      guardedJoints, contacts, solverBodies.dynamicCount(),
+      [&](int slot) {
+        const int entry = solverBodies.movingEntryOf(slot);
+        return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
+      },
+      [&](int slot) { return solverBodies.view(slot); },
+      [&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, fb, dt); },
+      def.gravity.norm() * dt);
+  contactSolver.prepare(contacts, solverBodies, def, dt);
   prepareJoints(fb, dt);
 
   // Warm start: apply last step's impulses first, so the iterations only refine them.
@@ -262,42 +281,68 @@ void WorldImpl::solve(double dt) {
 
 void WorldImpl::integratePositions(double dt) {
   solverBodies.holdKinematicVelocities();
-  fastBodies.clear();
   const MotionLimits limits = MotionLimits::of(def, dt);
+  onePassStarts.resize(static_cast<size_t>(solverBodies.dynamicCount()));
   for (int e = 0; e < solverBodies.movingCount(); ++e) {
     SolverBody& body = solverBodies[e];
-    if (solverBodies.isDynamic(e)) limits.apply(body.linearVelocity, body.angularVelocity);
-    const Vec2 move = dt * body.linearVelocity;
-    const double turn = dt * body.angularVelocity;
     if (solverBodies.isDynamic(e)) {
-      // A body that moves less than a quarter of its own thickness in a step cannot skip past
-      // anything as thick as itself, and its speculative contacts catch it before it sinks
-      // deep; faster ones get the continuous pass.
-      const Body& shape = bodies.items[solverBodies.slotOf(e)];
-      const double reach = move.norm() + std::abs(turn) * shape.maxExtent;
-      if (reach > std::max(def.speculativeDistance, 0.25 * shape.minExtent)) {
-        fastBodies.push_back({solverBodies.slotOf(e), body.center, body.angle});
-      }
+      limits.apply(body.linearVelocity, body.angularVelocity);
+      onePassStarts[e] = {body.center, body.angle};
     }
-    body.center += move;
-    turnBy(body, turn);
+    body.center += dt * body.linearVelocity;
+    turnBy(body, dt * body.angularVelocity);
+  }
+}
+
+bool WorldImpl::isFast(const Body& body, const Vec2& move, double turn, double arm) const {
+  // A body that moves less than a quarter of its own thickness in a step cannot skip past
+  // anything as thick as itself, and its speculative contacts catch it before it sinks deep;
+  // faster ones get the continuous pass.
+  const double reach = move.norm() + std::abs(turn) * (arm + body.maxExtent);
+  return reach > std::max(def.speculativeDistance, 0.25 * body.minExtent);
+}
+
+void WorldImpl::findOnePassFastBodies() {
+  fastBodies.clear();
+  fastClusters.clear();
+  for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
+    const SolverBody& entry = solverBodies[e];
+    const auto& [center0, angle0] = onePassStarts[e];
+    const Vec2 move = entry.center - center0;
+    const double turn = entry.angle - angle0;
+    const auto [first, last] = solverBodies.membersOf(e);
+    if (first == last) {
+      const int slot = solverBodies.slotOf(e);
+      if (isFast(bodies.items[slot], move, turn, 0.0)) {
+        fastBodies.push_back({slot, center0, angle0, -1});
+      }
+      continue;
+    }
+    bool fast = false;  // a welded cluster is swept whole when any member moved fast
+    for (int k = first; k < last && !fast; ++k) {
+      const MemberStart& m = solverBodies.member(k);
+      fast = isFast(bodies.items[m.slot], move, turn, m.offset.norm());
+    }
+    if (!fast) continue;
+    const int cluster = static_cast<int>(fastClusters.size());
+    fastClusters.push_back({center0, move, turn, 1.0});
+    for (int k = first; k < last; ++k) {
+      const MemberStart& m = solverBodies.member(k);
+      fastBodies.push_back({m.slot, center0 + m.offset, m.angle0, cluster});
+    }
   }
 }
 
 void WorldImpl::correctPositions() {
   if (def.solver != SolverType::NonlinearGaussSeidel) return;
-  solverBodies.loadPoses(bodies.items);  // continuous collision may have moved some
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;
-    for (const int j : activeJoints) {
-      Joint& joint = joints.items[j];
-      jointsOk &=
-          solveJointPosition(joint, solverBodies[joint.entryA], solverBodies[joint.entryB], def);
-    }
+    onActiveJoints(
+        [&](Joint& j, SolverBody& a, SolverBody& b) { jointsOk &= solveJointPosition(j, a, b, def); },
+        true);
     const bool contactsOk = contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;
   }
-  solverBodies.storeDynamicPoses(bodies.items);
 }
 
 void WorldImpl::clearForces() {

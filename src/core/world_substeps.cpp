@@ -94,7 +94,9 @@ void WorldImpl::solveSubsteps(double dt) {
   const double h = dt / substeps;
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
-  sb.gather(bodies.items, bodies.alive, def.gravity, h, MotionLimits::of(def, h), stepWorkers);
+  weldClusters.find(bodies.items, bodies.alive, joints.items, joints.alive);
+  sb.gather(bodies.items, bodies.alive, def.gravity, h, MotionLimits::of(def, h), weldClusters,
+            stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
 
   activeJoints.clear();
@@ -104,7 +106,7 @@ void WorldImpl::solveSubsteps(double dt) {
     Joint& joint = joints.items[j];
     const bool moves =
         sb.isDynamicEntry(sb.entryOf(joint.bodyA)) || sb.isDynamicEntry(sb.entryOf(joint.bodyB));
-    if (!moves) continue;
+    if (!moves || weldClusters.joins(joint.bodyA, joint.bodyB)) continue;
     activeJoints.push_back(static_cast<int>(j));
     activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
     if (!def.warmStarting) {
@@ -136,8 +138,9 @@ void WorldImpl::solveSubsteps(double dt) {
   pass.maxLinearCorrection = kMaxLinearCorrection;
 
   const Feedback rigid;  // no bias
-  const Feedback jointSpring = springFeedback(
+  Feedback jointSpring = springFeedback(
       std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h), def.jointDampingRatio, h);
+  jointSpring.maxPush = def.maxPushVelocity;
   const int bodyBlocks = blocksOf(sb.movingCount(), kBodiesPerBlock);
   const int dynamicBlocks = blocksOf(sb.dynamicCount(), kBodiesPerBlock);
   const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
@@ -162,6 +165,15 @@ void WorldImpl::solveSubsteps(double dt) {
     };
   };
 
+  // What the last step kept, before the bundles take the contacts' (warm_start_guard.hpp).
+  guardedJoints.clear();
+  for (Joint& joint : solverJoints) guardedJoints.push_back(&joint);
+  warmStartGuard.run(
+      guardedJoints, contacts, sb.dynamicCount(),
+      [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
+      [&](int slot) { return sb.view(slot); },
+      [&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, firstFeedback, h); },
+      def.gravity.norm() * dt);
   stepWorkers.stage(contactBlocks, [&](int block, int) {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
     contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
@@ -208,13 +220,29 @@ void WorldImpl::solveSubsteps(double dt) {
 
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.
   fastBodies.clear();
+  fastClusters.clear();
   for (int e = 0; e < sb.dynamicCount(); ++e) {
     const BodyState& s = sb.state(e);
-    const BodyStart& start = sb.start(e);
-    const Body& body = bodies.items[start.slot];
-    const double reach = std::sqrt(s.dx * s.dx + s.dy * s.dy) + std::abs(s.turned) * body.maxExtent;
-    if (reach > std::max(def.speculativeDistance, 0.25 * body.minExtent)) {
-      fastBodies.push_back({start.slot, sb.sim(e).center0, start.angle0});
+    const auto [first, last] = sb.membersOf(e);
+    if (first == last) {
+      const BodyStart& start = sb.start(e);
+      if (isFast(bodies.items[start.slot], Vec2(s.dx, s.dy), s.turned, 0.0)) {
+        fastBodies.push_back({start.slot, sb.sim(e).center0, start.angle0, -1});
+      }
+      continue;
+    }
+    // A welded cluster is swept whole when any member moved fast.
+    bool fast = false;
+    for (int k = first; k < last && !fast; ++k) {
+      const MemberStart& m = sb.member(k);
+      fast = isFast(bodies.items[m.slot], Vec2(s.dx, s.dy), s.turned, m.offset.norm());
+    }
+    if (!fast) continue;
+    const int cluster = static_cast<int>(fastClusters.size());
+    fastClusters.push_back({sb.sim(e).center0, Vec2(s.dx, s.dy), s.turned, 1.0});
+    for (int k = first; k < last; ++k) {
+      const MemberStart& m = sb.member(k);
+      fastBodies.push_back({m.slot, sb.sim(e).center0 + m.offset, m.angle0, cluster});
     }
   }
 }

@@ -1,11 +1,12 @@
 // impulse2d_core_soak: runs the core soak (soak_run.hpp) for a time or a number of seeds.
 //
 //   impulse2d_core_soak [--seed N] [--seconds S | --runs N] [--steps N] [--solver NAME|all]
-//                       [--threads N] [--top-down] [--junit FILE]
+//                       [--threads N] [--top-down] [--watch BODY] [--junit FILE]
 //
 // Seeds run one after the other from --seed, each with every solver asked for, until --seconds
 // of wall time have passed (default 60) or --runs seeds are done. Prints one line per run and a
-// total; on a violation, the seed, the solver and the last edits, and exits 1.
+// total; on a violation, the seed, the solver and the last edits, and exits 1. --watch prints one
+// body's pose, velocity and contacts after every step (to see how a violation came about).
 #include <impulse2d/defs.hpp>
 
 #include <chrono>
@@ -23,7 +24,7 @@ int usage(const char* why) {
   std::fprintf(stderr,
                "impulse2d_core_soak: %s\nusage: impulse2d_core_soak [--seed N] [--seconds S | "
                "--runs N] [--steps N] [--solver baumgarte|ngs|soft|substep|all] [--threads N] "
-               "[--top-down] [--junit FILE]\n",
+               "[--top-down] [--watch BODY] [--junit FILE]\n",
                why);
   return 2;
 }
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
   using namespace impulse2d;
   double seed = 1, seconds = 60, runs = 0, steps = 600, threads = 1;
   bool topDown = false;
-  std::string junit;
+  std::string junit, watch;
   std::vector<SolverType> solvers(std::begin(kAllSolvers), std::end(kAllSolvers));
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -76,6 +77,10 @@ int main(int argc, char** argv) {
       if (!take(1, 256, &threads)) return usage("--threads needs 1 to 256");
     } else if (arg == "--top-down") {
       topDown = true;
+    } else if (arg == "--watch") {
+      if (!value) return usage("--watch needs a body name");
+      watch = value;
+      ++i;
     } else if (arg == "--junit") {
       if (!value) return usage("--junit needs a file");
       junit = value;
@@ -113,6 +118,7 @@ int main(int argc, char** argv) {
       options.solver = solver;
       options.threads = static_cast<int>(threads);
       options.gravity = !topDown && s % 5 != 4;  // one seed in five is top-down anyway
+      options.watch = watch;
       const soak::Report report = soak::run(options);
       ++done;
       totalSteps += report.steps;

@@ -32,6 +32,7 @@ struct Options {
   SolverType solver = SolverType::SubstepNgs;
   int threads = 1;
   bool gravity = true;    ///< false: a top-down world (no gravity)
+  std::string watch;      ///< a body's name: its pose, velocity and contacts on stderr each step
 };
 
 /// Steps of the quiet phase at the end of every run.
