@@ -66,6 +66,39 @@ class Progress {
   double lastDraw_ = 0.0;
 };
 
+const char* causeName(RemovalCause cause) {  // as ~removed_bodies names them
+  switch (cause) {
+    case RemovalCause::LeftWorldExtent:
+      return "LEFT_WORLD";
+    case RemovalCause::Overflow:
+      return "OVERFLOW";
+    case RemovalCause::LostForGood:
+      return "LOST_FOR_GOOD";
+  }
+  return "UNKNOWN";
+}
+
+// Each body the step removed, and each it found lost for good, one line on stderr: which, when,
+// where and why. Returns how many were removed.
+uint64_t reportLosses(World& world, uint64_t step) {
+  const std::vector<RemovedBody> removed = world.takeRemovedBodies();
+  for (const RemovedBody& r : removed) {
+    std::fprintf(stderr,
+                 "impulse2d_sim: step %" PRIu64 " (t = %.6g s): removed body '%s' (%s) at "
+                 "(%.6g, %.6g): %s\n",
+                 step, world.time(), r.name.c_str(), causeName(r.cause), r.position.x(),
+                 r.position.y(), r.reason.c_str());
+  }
+  for (const LostBody& l : world.takeLostBodies()) {
+    std::fprintf(stderr,
+                 "impulse2d_sim: step %" PRIu64 " (t = %.6g s): body '%s' is lost for good at "
+                 "(%.6g, %.6g): %s\n",
+                 step, world.time(), l.name.c_str(), l.position.x(), l.position.y(),
+                 l.reason.c_str());
+  }
+  return removed.size();
+}
+
 int run(const Options& options) {
   Scene scene;
   std::string error;
@@ -98,10 +131,12 @@ int run(const Options& options) {
   const Clock::time_point start = Clock::now();
   Progress progress(steps, start);
   if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, 0);
+  uint64_t removed = 0;
   for (uint64_t k = 1; k <= steps; ++k) {
     devices.beforeStep(world, world.time());
     world.step();
     devices.afterStep(world, world.time());
+    removed += reportLosses(world, k);
     if (k % options.every == 0 || k == steps) {
       if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, k);
       if (contactsCsv.isOpen()) contactsCsv.writeContacts(world, k);
@@ -114,8 +149,10 @@ int run(const Options& options) {
   if (!bodiesCsv.close(&error) || !contactsCsv.close(&error)) {
     return fail(kExitRunFailed, error);
   }
-  std::printf("steps: %" PRIu64 ", simulated: %.6g s, wall: %.3f s, bodies: %zu, contacts: %zu\n",
+  std::printf("steps: %" PRIu64 ", simulated: %.6g s, wall: %.3f s, bodies: %zu, contacts: %zu",
               steps, world.time(), wall, world.bodyCount(), world.contactCount());
+  if (removed > 0) std::printf(", removed: %" PRIu64 " (listed on stderr)", removed);
+  std::printf("\n");
   if (options.hash) std::printf("hash: %016" PRIx64 "\n", world.hash());
   if (std::fflush(stdout) != 0) return fail(kExitRunFailed, "cannot write to stdout");
   return 0;

@@ -99,6 +99,38 @@ void expectOneLineError(const SimRun& run, int exitCode, const std::string& ment
   EXPECT_TRUE(run.out.empty()) << run.out;
 }
 
+// Each body the world removes is named on stderr with its cause and step, not only counted.
+TEST(SimCli, EachRemovedBodyIsReportedWithItsCauseAndStep) {
+  const std::string scene = tempPath("removed.yaml");
+  {
+    std::ofstream out(scene);
+    out << "world: {remove_lost_bodies: true, max_linear_speed: 1000000}\n"
+           "bodies:\n"
+           "  - {name: ground, type: static, position: [0, -0.5], shapes: [{size: [20, 1]}]}\n"
+           "  - {name: sinker, position: [0, -30], shapes: [{size: [1, 1]}]}\n"
+           "  - {name: flyer, position: [0, 5], linear_velocity: [0, 1000000],\n"
+           "     shapes: [{size: [1, 1]}]}\n";
+  }
+  // Up at 1e6 m/s, less 9.81 m/s^2: past y = 1e7 m in step 1001.
+  const SimRun run = runSim({scene, "--steps", "1001"});
+  std::remove(scene.c_str());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::vector<std::string> err = lines(run.err);
+  ASSERT_EQ(err.size(), 2u) << run.err;
+  EXPECT_EQ(err[0].rfind("impulse2d_sim: step 1 (t = 0.01 s): removed body 'sinker' (LOST_FOR_GOOD)",
+                         0),
+            0u)
+      << err[0];
+  EXPECT_NE(err[0].find("lost for good"), std::string::npos) << err[0];
+  EXPECT_EQ(err[1].rfind("impulse2d_sim: step 1001 (t = 10.01 s): removed body 'flyer' (LEFT_WORLD)", 0),
+            0u)
+      << err[1];
+  EXPECT_NE(err[1].find("it left the world extent of 1e7 m"), std::string::npos) << err[1];
+  EXPECT_NE(run.out.find("bodies: 1, contacts: 0, removed: 2 (listed on stderr)"),
+            std::string::npos)
+      << run.out;
+}
+
 TEST(SimCli, BadArgumentsExitTwoWithOneLine) {
   const std::string pendulum = config("pendulum.yaml");
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
