@@ -1,5 +1,6 @@
 # gtest unit tests of the ROS-free parts; no ROS master is involved.
 file(GLOB IMPULSE2D_UNIT_TEST_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/unit/*.cpp)
+list(APPEND IMPULSE2D_UNIT_TEST_SOURCES ${PROJECT_SOURCE_DIR}/test/soak/soak_run.cpp)
 set(IMPULSE2D_TEST_DEFINES
   IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   IMPULSE2D_SIM_EXECUTABLE="$<TARGET_FILE:impulse2d_sim>")
@@ -12,14 +13,14 @@ if(IMPULSE2D_CORE_ONLY)
   include(GoogleTest)
   add_executable(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES})
   target_link_libraries(impulse2d_unit_tests PRIVATE impulse2d_scene impulse2d_devices
-    impulse2d_soak GTest::gtest_main)
+    GTest::gtest_main)
   gtest_discover_tests(impulse2d_unit_tests DISCOVERY_TIMEOUT 60)
 elseif(CATKIN_ENABLE_TESTING)  # always true here: CMakeLists.txt includes us only then
   catkin_add_gtest(impulse2d_unit_tests ${IMPULSE2D_UNIT_TEST_SOURCES} TIMEOUT 600)
-  target_link_libraries(impulse2d_unit_tests impulse2d_scene impulse2d_devices impulse2d_soak
+  target_link_libraries(impulse2d_unit_tests impulse2d_scene impulse2d_devices
     ${GTEST_MAIN_LIBRARIES})
 endif()
 target_include_directories(impulse2d_unit_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/core
-  ${PROJECT_SOURCE_DIR}/src/scene)
+  ${PROJECT_SOURCE_DIR}/src/scene ${PROJECT_SOURCE_DIR}/test/soak)
 target_compile_definitions(impulse2d_unit_tests PRIVATE ${IMPULSE2D_TEST_DEFINES})
 add_dependencies(impulse2d_unit_tests impulse2d_sim)

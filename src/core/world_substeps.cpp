@@ -1,4 +1,4 @@
-// Stages 4-6 and 8 of World::step for the sub-stepping solvers: n = velocity_iterations sub-steps
+// Stages 4-7 of World::step for the sub-stepping solvers: n = velocity_iterations sub-steps
 // of h = dt / n. The narrow phase ran once for the whole step; then
 //
 //   gather the moving bodies, colour the joints and contacts, fill the contact bundles
