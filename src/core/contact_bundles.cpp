@@ -222,7 +222,7 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
     if (contact.manifold.pointCount == 0) continue;
     const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
     if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
-    if (dynamicA == dynamicB) continue;           // two members of one welded cluster
+    if (dynamicA == dynamicB) continue;          // two members of one welded cluster
     const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
     colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflow : color;
     ++count[colorOf_[i]];

@@ -27,7 +27,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     // Asleep, or resting on something that cannot move.
     if (!bodies.isActive(contact.bodyA) && !bodies.isActive(contact.bodyB)) continue;
     const int entryA = bodies.entryOf(contact.bodyA), entryB = bodies.entryOf(contact.bodyB);
-    if (entryA == entryB) continue;  // two members of one welded cluster
+    if (entryA == entryB) continue;                      // two members of one welded cluster
     ContactConstraint& c = constraints_.emplace_back();  // built in place: no copies
     ContactConstraintExtra& extra = extras_.emplace_back();
     extra.contact = &contact;

@@ -39,7 +39,7 @@ JointParams paramsOf(const JointDef& def);
 struct Joint {
   JointId id;
   JointParams def;
-  int bodyA = -1, bodyB = -1;  // slot indices
+  int bodyA = -1, bodyB = -1;                                     // slot indices
   Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
   double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
@@ -150,9 +150,7 @@ inline double angularBias(double c, const Feedback& fb, double reach) {
   return std::clamp(-fb.rate * c, -cap, cap);
 }
 /// How far the joint's anchors lie from their bodies' centres of mass (the larger).
-inline double anchorReach(const Vec2& rA, const Vec2& rB) {
-  return std::max(rA.norm(), rB.norm());
-}
+inline double anchorReach(const Vec2& rA, const Vec2& rB) { return std::max(rA.norm(), rB.norm()); }
 
 /// A soft (spring) row. With effective mass m, stiffness k = m w^2 and damping c = 2 m zeta w
 /// (w = 2 pi frequency), implicit Euler over one step asks the impulse L to satisfy

@@ -82,8 +82,7 @@ void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
     // An infinite maxLength never binds: its row is skipped, and inf never enters a bias.
     joint.upperBias =
         std::isfinite(joint.def.maxLength)
-            ? limitBias(joint.def.maxLength - rod.length, fb, dt, &joint.upperFeedback,
-                        fb.maxPush)
+            ? limitBias(joint.def.maxLength - rod.length, fb, dt, &joint.upperFeedback, fb.maxPush)
             : 0.0;
   } else {
     joint.lengthBias = linearBias(c, fb);

@@ -105,12 +105,12 @@ void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback
   joint.pointMass = safeInverse(blockMatrix(joint, a, b));
   joint.axialMass = axialMassOf(joint, a, b);
   const Vec2 error(rail.normal.dot(rail.d), joint.angle);
-  joint.pointBias = Vec2(linearBias(error.x(), fb),
-                         angularBias(error.y(), fb, anchorReach(joint.rA, joint.rB)));
-  joint.lowerBias = limitBias(joint.axialPosition - joint.def.lower, fb, dt, &joint.lowerFeedback,
-                              fb.maxPush);
-  joint.upperBias = limitBias(joint.def.upper - joint.axialPosition, fb, dt, &joint.upperFeedback,
-                              fb.maxPush);
+  joint.pointBias =
+      Vec2(linearBias(error.x(), fb), angularBias(error.y(), fb, anchorReach(joint.rA, joint.rB)));
+  joint.lowerBias =
+      limitBias(joint.axialPosition - joint.def.lower, fb, dt, &joint.lowerFeedback, fb.maxPush);
+  joint.upperBias =
+      limitBias(joint.def.upper - joint.axialPosition, fb, dt, &joint.upperFeedback, fb.maxPush);
   if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }

@@ -26,10 +26,8 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
   joint.pointBias = pointBias(gap, fb);
   const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
-  joint.lowerBias =
-      limitBias(joint.angle - joint.def.lower, fb, dt, &joint.lowerFeedback, maxTurn);
-  joint.upperBias =
-      limitBias(joint.def.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
+  joint.lowerBias = limitBias(joint.angle - joint.def.lower, fb, dt, &joint.lowerFeedback, maxTurn);
+  joint.upperBias = limitBias(joint.def.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
   if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
   if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }

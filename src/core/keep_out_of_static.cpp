@@ -72,8 +72,8 @@ void WorldImpl::keepOutOfStatic() {
     // The manifold's normal points from A to B.
     const Vec2 n = staticA ? contact.manifold.normal : Vec2(-contact.manifold.normal);
     const double depth = reachAlong(wallShape, wall.xf, n) + reachAlong(shape, body.xf, -n);
-    const double allowed = std::max(2.0 * def.linearSlop,
-                                    0.25 * std::min(innerRadius(wallShape), body.minExtent));
+    const double allowed =
+        std::max(2.0 * def.linearSlop, 0.25 * std::min(innerRadius(wallShape), body.minExtent));
     if (!(depth > allowed)) continue;
     const Vec2 push = (depth - def.linearSlop) * n;
     const int cluster = weldClusters.clusterOf(slot);

@@ -30,8 +30,8 @@ void SolverBodies::addCluster(const WeldClusters& clusters, int cluster) {
   e.invMass = 1.0 / r.mass;
   e.invInertia = 1.0 / r.inertia;
   e.center = r.center;
-  loads_[entry] = {r.force, r.torque, r.linearDamping, r.angularDamping, r.velocity,
-                   r.angularVelocity};
+  loads_[entry] = {r.force,          r.torque,   r.linearDamping,
+                   r.angularDamping, r.velocity, r.angularVelocity};
   clusterOfEntry_[entry] = cluster;
   for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
     memberOfSlot_[*m] = static_cast<int>(members_.size());

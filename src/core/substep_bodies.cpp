@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace impulse2d {
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
@@ -245,8 +244,7 @@ void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
   s.qs = q.s;
 }
 
-void SubstepBodies::finishMember(std::vector<Body>& bodies, int entry,
-                                 const MemberStart& m) const {
+void SubstepBodies::finishMember(std::vector<Body>& bodies, int entry, const MemberStart& m) const {
   const BodyState& s = states_[entry];
   const Vec2 center = sims_[entry].center0 + Vec2(s.dx, s.dy);
   Body& body = bodies[m.slot];

@@ -117,8 +117,8 @@ class SubstepBodies {
   }
   const MemberStart& member(int index) const { return members_[index]; }
 
-  /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin, end) back to the
-  /// bodies.
+  /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin,
+  /// end) back to the bodies.
   void finish(std::vector<Body>& bodies, int begin, int end) const;
 
  private:

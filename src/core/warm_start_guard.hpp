@@ -28,8 +28,8 @@ class WarmStartGuard {
   /// cluster share one) or -1, below `rows`; view(slot) a joint's view of the body (its row's
   /// velocity, masses and centre of mass); prepare(joint, a, b) computes the joint's rows.
   template <class RowOf, class View, class Prepare>
-  void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows,
-           RowOf rowOf, View view, Prepare prepare, double gravityStep) {
+  void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows, RowOf rowOf,
+           View view, Prepare prepare, double gravityStep) {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();

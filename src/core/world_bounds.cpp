@@ -1,6 +1,6 @@
 // The step stage that keeps the world finite and says what it lost. A body that flew beyond
-// kWorldExtent, or whose velocity stopped being finite (integrateVelocities froze it), is removed with its
-// joints and contacts and reported, rather than left to poison the broad phase and its
+// kWorldExtent, or whose velocity stopped being finite (integrateVelocities froze it), is removed
+// with its joints and contacts and reported, rather than left to poison the broad phase and its
 // neighbours with non-finite numbers. A body that fell below every static body, with nothing
 // left that could stop it, is reported as lost for good, and removed then if the world says so.
 #include "world_impl.hpp"
@@ -184,8 +184,7 @@ void World::removeEscapedBodies() {
   for (const int slot : w.overflowedBodies) {
     if (!w.bodies.alive[slot]) continue;
     const Body& body = w.bodies.items[slot];
-    remove(RemovedBody{body.id, body.name, body.xf.p,
-                       "its velocity stopped being finite",
+    remove(RemovedBody{body.id, body.name, body.xf.p, "its velocity stopped being finite",
                        RemovalCause::Overflow});
   }
   w.overflowedBodies.clear();

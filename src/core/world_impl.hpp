@@ -125,15 +125,15 @@ struct WorldImpl {
   // A welded cluster's rigid motion this step: its members are swept together, and stopped
   // together at the first impact of any of them.
   struct FastCluster {
-    Vec2 pivot0;  // its centre of mass when the step began
-    Vec2 move;    // how far the centre moved
-    double turn;  // rad
+    Vec2 pivot0;    // its centre of mass when the step began
+    Vec2 move;      // how far the centre moved
+    double turn;    // rad
     double impact;  // the earliest impact of any member, as a fraction of the step (1: none)
   };
   std::vector<FastCluster> fastClusters;
   WeldClusters weldClusters;  // this step's (weld_clusters.hpp)
   WarmStartGuard warmStartGuard;
-  std::vector<Joint*> guardedJoints;  // reused: the joints warmStartGuard looks at
+  std::vector<Joint*> guardedJoints;                   // reused: the joints warmStartGuard looks at
   std::vector<std::pair<Vec2, double>> onePassStarts;  // by dynamic entry: centre, angle
   std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;

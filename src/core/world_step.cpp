@@ -25,9 +25,9 @@ void World::step() {
       w.weldClusters.find(w.bodies.items, w.bodies.alive, w.joints.items, w.joints.alive);
       w.solverBodies.gather(w.bodies.items, w.bodies.alive, w.weldClusters);  // 4-7 on a copy
       w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
-      w.solve(dt);               // 5. pre-step, warm start, velocity iterations, restitution
-      w.integratePositions(dt);  // 6. move with the solved velocities
-      w.correctPositions();      // 7. ngs: push remaining overlaps and joint gaps apart
+      w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
+      w.integratePositions(dt);   // 6. move with the solved velocities
+      w.correctPositions();       // 7. ngs: push remaining overlaps and joint gaps apart
       w.solverBodies.storeMotion(w.bodies.items);
       w.findOnePassFastBodies();
     }
@@ -233,8 +233,8 @@ void WorldImpl::onActiveJoints(Op op, bool pose) {
 }
 
 void WorldImpl::prepareJoints(const Feedback& fb, double dt) {
-  onActiveJoints([&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, fb, dt); },
-                 false);
+  onActiveJoints(
+      [&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, fb, dt); }, false);
 }
 
 void WorldImpl::warmStartJoints() {
@@ -337,9 +337,9 @@ void WorldImpl::correctPositions() {
   if (def.solver != SolverType::NonlinearGaussSeidel) return;
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;
-    onActiveJoints(
-        [&](Joint& j, SolverBody& a, SolverBody& b) { jointsOk &= solveJointPosition(j, a, b, def); },
-        true);
+    onActiveJoints([&](Joint& j, SolverBody& a,
+                       SolverBody& b) { jointsOk &= solveJointPosition(j, a, b, def); },
+                   true);
     const bool contactsOk = contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;
   }

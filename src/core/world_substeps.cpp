@@ -138,8 +138,8 @@ void WorldImpl::solveSubsteps(double dt) {
   pass.maxLinearCorrection = kMaxLinearCorrection;
 
   const Feedback rigid;  // no bias
-  Feedback jointSpring = springFeedback(
-      std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h), def.jointDampingRatio, h);
+  Feedback jointSpring = springFeedback(std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h),
+                                        def.jointDampingRatio, h);
   jointSpring.maxPush = def.maxPushVelocity;
   const int bodyBlocks = blocksOf(sb.movingCount(), kBodiesPerBlock);
   const int dynamicBlocks = blocksOf(sb.dynamicCount(), kBodiesPerBlock);

@@ -84,14 +84,16 @@ uint64_t reportLosses(World& world, uint64_t step) {
   const std::vector<RemovedBody> removed = world.takeRemovedBodies();
   for (const RemovedBody& r : removed) {
     std::fprintf(stderr,
-                 "impulse2d_sim: step %" PRIu64 " (t = %.6g s): removed body '%s' (%s) at "
+                 "impulse2d_sim: step %" PRIu64
+                 " (t = %.6g s): removed body '%s' (%s) at "
                  "(%.6g, %.6g): %s\n",
                  step, world.time(), r.name.c_str(), causeName(r.cause), r.position.x(),
                  r.position.y(), r.reason.c_str());
   }
   for (const LostBody& l : world.takeLostBodies()) {
     std::fprintf(stderr,
-                 "impulse2d_sim: step %" PRIu64 " (t = %.6g s): body '%s' is lost for good at "
+                 "impulse2d_sim: step %" PRIu64
+                 " (t = %.6g s): body '%s' is lost for good at "
                  "(%.6g, %.6g): %s\n",
                  step, world.time(), l.name.c_str(), l.position.x(), l.position.y(),
                  l.reason.c_str());

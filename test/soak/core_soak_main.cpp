@@ -1,12 +1,13 @@
 // impulse2d_core_soak: runs the core soak (soak_run.hpp) for a time or a number of seeds.
 //
 //   impulse2d_core_soak [--seed N] [--seconds S | --runs N] [--steps N] [--solver NAME|all]
-//                       [--threads N] [--top-down] [--watch BODY] [--junit FILE]
+//                       [--threads N] [--top-down] [--watch BODY] [--keep-going] [--junit FILE]
 //
 // Seeds run one after the other from --seed, each with every solver asked for, until --seconds
 // of wall time have passed (default 60) or --runs seeds are done. Prints one line per run and a
-// total; on a violation, the seed, the solver and the last edits, and exits 1. --watch prints one
-// body's pose, velocity and contacts after every step (to see how a violation came about).
+// total; on a violation, the seed, the solver and the last edits, and exits 1 (after the seed's
+// other solvers; --keep-going runs every seed asked for and counts the failures). --watch prints
+// one body's pose, velocity and contacts after every step (to see how a violation came about).
 #include <impulse2d/defs.hpp>
 
 #include <chrono>
@@ -24,7 +25,7 @@ int usage(const char* why) {
   std::fprintf(stderr,
                "impulse2d_core_soak: %s\nusage: impulse2d_core_soak [--seed N] [--seconds S | "
                "--runs N] [--steps N] [--solver baumgarte|ngs|soft|substep|all] [--threads N] "
-               "[--top-down] [--watch BODY] [--junit FILE]\n",
+               "[--top-down] [--watch BODY] [--keep-going] [--junit FILE]\n",
                why);
   return 2;
 }
@@ -40,11 +41,16 @@ bool number(const char* text, double lo, double hi, double* out) {
 std::string xmlEscape(const std::string& s) {
   std::string out;
   for (const char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
@@ -54,7 +60,7 @@ std::string xmlEscape(const std::string& s) {
 int main(int argc, char** argv) {
   using namespace impulse2d;
   double seed = 1, seconds = 60, runs = 0, steps = 600, threads = 1;
-  bool topDown = false;
+  bool topDown = false, keepGoing = false;
   std::string junit, watch;
   std::vector<SolverType> solvers(std::begin(kAllSolvers), std::end(kAllSolvers));
   for (int i = 1; i < argc; ++i) {
@@ -75,6 +81,8 @@ int main(int argc, char** argv) {
       if (!take(1, 1e7, &steps)) return usage("--steps needs a number >= 1");
     } else if (arg == "--threads") {
       if (!take(1, 256, &threads)) return usage("--threads needs 1 to 256");
+    } else if (arg == "--keep-going") {
+      keepGoing = true;
     } else if (arg == "--top-down") {
       topDown = true;
     } else if (arg == "--watch") {
@@ -93,8 +101,9 @@ int main(int argc, char** argv) {
       } else if (solverFromName(value, &s)) {
         solvers.assign(1, s);
       } else {
-        return usage(("unknown solver '" + std::string(value) + "'; use " + solverNameList() +
-                      " or all").c_str());
+        return usage(
+            ("unknown solver '" + std::string(value) + "'; use " + solverNameList() + " or all")
+                .c_str());
       }
       ++i;
     } else {
@@ -136,9 +145,9 @@ int main(int argc, char** argv) {
         for (const std::string& v : report.violations) detail += v + "\n";
         detail += "last edits, oldest first:\n";
         for (const std::string& e : report.lastEdits) detail += "  " + e + "\n";
-        detail += "reproduce: impulse2d_core_soak --seed " + std::to_string(s) + " --runs 1 --steps " +
-                  std::to_string(options.steps) + " --solver " + solverName(solver) +
-                  (topDown ? " --top-down" : "") + "\n";
+        detail += "reproduce: impulse2d_core_soak --seed " + std::to_string(s) +
+                  " --runs 1 --steps " + std::to_string(options.steps) + " --solver " +
+                  solverName(solver) + (topDown ? " --top-down" : "") + "\n";
         std::fprintf(stderr, "%s", detail.c_str());
         xml += "><failure message=\"" + xmlEscape(report.violations.front()) + "\"><![CDATA[" +
                detail + "]]></failure></testcase>";
@@ -146,13 +155,13 @@ int main(int argc, char** argv) {
       cases.push_back(xml);
     }
     std::fflush(stdout);
-    if (failed > 0) break;
+    if (failed > 0 && !keepGoing) break;
   }
   std::printf("core soak: %llu runs, %llu steps, %llu edits, %llu checks, %llu failed, %.0f s\n",
               static_cast<unsigned long long>(done), static_cast<unsigned long long>(totalSteps),
               static_cast<unsigned long long>(totalEdits),
-              static_cast<unsigned long long>(totalChecks),
-              static_cast<unsigned long long>(failed), elapsed());
+              static_cast<unsigned long long>(totalChecks), static_cast<unsigned long long>(failed),
+              elapsed());
   if (!junit.empty()) {
     std::ofstream out(junit);
     out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"core_soak\" tests=\""

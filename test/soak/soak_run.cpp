@@ -16,9 +16,9 @@ namespace impulse2d {
 namespace soak {
 namespace {
 
-constexpr double kHalfWidth = 10.0;   // m, the arena's inside: x in [-10, 10]
-constexpr double kHeight = 20.0;      // m, y in [0, 20]
-constexpr double kWall = 2.0;         // m, thickness of the four static walls
+constexpr double kHalfWidth = 10.0;  // m, the arena's inside: x in [-10, 10]
+constexpr double kHeight = 20.0;     // m, y in [0, 20]
+constexpr double kWall = 2.0;        // m, thickness of the four static walls
 // m a centre of mass may sink into a wall before it counts as gone through: half the wall. (A
 // rigid assembly wider than the arena, welded together by a user, jams between two walls and
 // sinks into both; only getting past the middle of one is leaving.)
@@ -65,11 +65,14 @@ class Soak {
 
  private:
   // --- random numbers ---
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(random_);
+  }
   int uniformInt(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random_); }
   bool chance(double p) { return uniform(0.0, 1.0) < p; }
   Vec2 insideArena(double margin) {
-    return Vec2(uniform(-kHalfWidth + margin, kHalfWidth - margin), uniform(margin, kHeight - margin));
+    return Vec2(uniform(-kHalfWidth + margin, kHalfWidth - margin),
+                uniform(margin, kHeight - margin));
   }
 
   void addWall(const char* name, const Vec2& center, const Vec2& size) {
@@ -110,16 +113,26 @@ class Soak {
   // --- edits ---
   void edit() {
     const double pick = uniform(0.0, 1.0);
-    if (pick < 0.30) spawn();
-    else if (pick < 0.40) destroySome();
-    else if (pick < 0.62) join();
-    else if (pick < 0.68) unjoin();
-    else if (pick < 0.76) teleport();
-    else if (pick < 0.84) push();
-    else if (pick < 0.89) driveKinematic();
-    else if (pick < 0.91) toggleSleep();
-    else if (pick < 0.93) setMotor();
-    else badRequest();
+    if (pick < 0.30)
+      spawn();
+    else if (pick < 0.40)
+      destroySome();
+    else if (pick < 0.62)
+      join();
+    else if (pick < 0.68)
+      unjoin();
+    else if (pick < 0.76)
+      teleport();
+    else if (pick < 0.84)
+      push();
+    else if (pick < 0.89)
+      driveKinematic();
+    else if (pick < 0.91)
+      toggleSleep();
+    else if (pick < 0.93)
+      setMotor();
+    else
+      badRequest();
   }
 
   ShapeDef randomShape() {
@@ -330,7 +343,8 @@ class Soak {
 
   void setMotor() {
     if (joints_.empty()) return;
-    const JointId id = joints_[static_cast<size_t>(uniformInt(0, static_cast<int>(joints_.size()) - 1))];
+    const JointId id =
+        joints_[static_cast<size_t>(uniformInt(0, static_cast<int>(joints_.size()) - 1))];
     const JointType type = world_.jointDef(id).type;
     if (type != JointType::Revolute && type != JointType::Prismatic) return;
     log("motor on joint " + std::to_string(id.index));
@@ -452,17 +466,24 @@ class Soak {
       auto it = bodies_.find(options_.watch);
       if (it != bodies_.end() && world_.isValid(it->second)) {
         const Body& b = world_.body(it->second);
-        fprintf(stderr, "W %llu %s at %s a %g v %s w %g ext %g %g\n", (unsigned long long)world_.stepCount(), watch, str(b.center).c_str(), b.angle, str(b.linearVelocity).c_str(), b.angularVelocity, b.minExtent, b.maxExtent);
+        fprintf(stderr, "W %llu %s at %s a %g v %s w %g ext %g %g\n",
+                (unsigned long long)world_.stepCount(), watch, str(b.center).c_str(), b.angle,
+                str(b.linearVelocity).c_str(), b.angularVelocity, b.minExtent, b.maxExtent);
         for (const JointId j : joints_) {
           const JointDef& d = world_.jointDef(j);
           if (d.bodyA != it->second && d.bodyB != it->second) continue;
           const BodyId other = d.bodyA == it->second ? d.bodyB : d.bodyA;
-          fprintf(stderr, "     joint %d type %d to %s (%s, mass %g) at %s f %g length %g\n", j.index,
-                  static_cast<int>(d.type), nameOf(other).c_str(),
+          fprintf(stderr, "     joint %d type %d to %s (%s, mass %g) at %s f %g length %g\n",
+                  j.index, static_cast<int>(d.type), nameOf(other).c_str(),
                   world_.body(other).type == BodyType::Kinematic ? "kinematic" : "dynamic",
-                  world_.body(other).mass, str(world_.body(other).center).c_str(), d.frequency, d.length);
+                  world_.body(other).mass, str(world_.body(other).center).c_str(), d.frequency,
+                  d.length);
         }
-        for (const ContactInfo& c : world_.contacts()) if ((c.bodyA == it->second || c.bodyB == it->second)) fprintf(stderr, "     contact %s-%s n %s sep %g imp %g\n", world_.body(c.bodyA).name.c_str(), world_.body(c.bodyB).name.c_str(), str(c.normal).c_str(), c.separation, c.normalImpulse);
+        for (const ContactInfo& c : world_.contacts())
+          if ((c.bodyA == it->second || c.bodyB == it->second))
+            fprintf(stderr, "     contact %s-%s n %s sep %g imp %g\n",
+                    world_.body(c.bodyA).name.c_str(), world_.body(c.bodyB).name.c_str(),
+                    str(c.normal).c_str(), c.separation, c.normalImpulse);
       }
     }
     ++report_.steps;
@@ -702,8 +723,8 @@ std::string Report::summary(const Options& options) const {
   out << "soak seed " << options.seed << " solver " << solverName(options.solver) << " threads "
       << options.threads << (options.gravity ? "" : " top-down") << ": " << steps << " steps, "
       << edits << " edits (" << badRefused << " bad, refused), up to " << maxBodies
-      << " bodies and " << maxJoints << " joints, " << checks << " checks, "
-      << violations.size() << " violations";
+      << " bodies and " << maxJoints << " joints, " << checks << " checks, " << violations.size()
+      << " violations";
   if (!violations.empty()) out << "; first: " << violations.front();
   return out.str();
 }

@@ -28,21 +28,21 @@ namespace soak {
 
 struct Options {
   uint64_t seed = 1;
-  int steps = 600;        ///< steps with edits; a quiet phase of kQuietSteps follows
+  int steps = 600;  ///< steps with edits; a quiet phase of kQuietSteps follows
   SolverType solver = SolverType::SubstepNgs;
   int threads = 1;
-  bool gravity = true;    ///< false: a top-down world (no gravity)
-  std::string watch;      ///< a body's name: its pose, velocity and contacts on stderr each step
+  bool gravity = true;  ///< false: a top-down world (no gravity)
+  std::string watch;    ///< a body's name: its pose, velocity and contacts on stderr each step
 };
 
 /// Steps of the quiet phase at the end of every run.
 constexpr int kQuietSteps = 400;
 
 struct Report {
-  uint64_t steps = 0;      ///< steps taken, quiet phase included
-  uint64_t edits = 0;      ///< edits made (valid and bad requests)
-  uint64_t badRefused = 0; ///< bad requests, each refused
-  uint64_t checks = 0;     ///< invariant checks made (one per body per invariant per step)
+  uint64_t steps = 0;       ///< steps taken, quiet phase included
+  uint64_t edits = 0;       ///< edits made (valid and bad requests)
+  uint64_t badRefused = 0;  ///< bad requests, each refused
+  uint64_t checks = 0;      ///< invariant checks made (one per body per invariant per step)
   size_t maxBodies = 0, maxJoints = 0;
   std::vector<std::string> violations;  ///< empty when every invariant held
   std::deque<std::string> lastEdits;    ///< the last few edits, oldest first

@@ -37,7 +37,8 @@ LoopRun runLoop(const std::string& scene, SolverType solver) {
       if (body.type != BodyType::Dynamic) continue;
       run.lowest = std::min(run.lowest, body.center.y() - body.maxExtent);
       run.fastest = std::max(run.fastest, body.linearVelocity.norm());
-      if (world.time() > 18.0) run.lateFastest = std::max(run.lateFastest, body.linearVelocity.norm());
+      if (world.time() > 18.0)
+        run.lateFastest = std::max(run.lateFastest, body.linearVelocity.norm());
     }
     run.weldError = std::max(
         run.weldError, std::abs((world.body(a).center - world.body(b).center).norm() - welded));

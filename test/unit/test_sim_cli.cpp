@@ -117,13 +117,14 @@ TEST(SimCli, EachRemovedBodyIsReportedWithItsCauseAndStep) {
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const std::vector<std::string> err = lines(run.err);
   ASSERT_EQ(err.size(), 2u) << run.err;
-  EXPECT_EQ(err[0].rfind("impulse2d_sim: step 1 (t = 0.01 s): removed body 'sinker' (LOST_FOR_GOOD)",
-                         0),
-            0u)
+  EXPECT_EQ(
+      err[0].rfind("impulse2d_sim: step 1 (t = 0.01 s): removed body 'sinker' (LOST_FOR_GOOD)", 0),
+      0u)
       << err[0];
   EXPECT_NE(err[0].find("lost for good"), std::string::npos) << err[0];
-  EXPECT_EQ(err[1].rfind("impulse2d_sim: step 1001 (t = 10.01 s): removed body 'flyer' (LEFT_WORLD)", 0),
-            0u)
+  EXPECT_EQ(
+      err[1].rfind("impulse2d_sim: step 1001 (t = 10.01 s): removed body 'flyer' (LEFT_WORLD)", 0),
+      0u)
       << err[1];
   EXPECT_NE(err[1].find("it left the world extent of 1e7 m"), std::string::npos) << err[1];
   EXPECT_NE(run.out.find("bodies: 1, contacts: 0, removed: 2 (listed on stderr)"),
