@@ -2,7 +2,7 @@
 # The core soak (test/soak/soak_run.hpp): seeded random edits of a running world through the
 # World API (spawn, delete, joints of every type anchored anywhere, teleports, forces, kinematic
 # motion, sleep on and off, bad requests), invariants checked after every step, under every
-# solver. Runs CORE_SOAK_RUNS seeds (default 20, about a minute) from CORE_SOAK_SEED (default 1):
+# solver. Runs CORE_SOAK_RUNS seeds (default 50, under a minute) from CORE_SOAK_SEED (default 1):
 # the same seeds on every machine. Longer: CORE_SOAK_SECONDS=1800 runs seeds for that much wall
 # time instead (a run is never cut short). A failure
 # prints the seed, the solver, the violation, the last edits and the command that reproduces it.
@@ -15,7 +15,7 @@ if [ -n "${CORE_SOAK_SECONDS:-}" ]; then
   bound=(--seconds "$CORE_SOAK_SECONDS")
   limit=$((CORE_SOAK_SECONDS + 600))
 else
-  bound=(--runs "${CORE_SOAK_RUNS:-20}")
+  bound=(--runs "${CORE_SOAK_RUNS:-50}")
   limit=900
 fi
 echo "core soak: seeds from $SEED, ${bound[*]}, every solver" >&2

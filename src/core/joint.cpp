@@ -133,19 +133,28 @@ void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
   }
 }
 
-namespace {
-
-// How far past the motion limits the velocity change from `before` to `after` goes: its square
-// over the limit's square, the larger of the linear and the angular one.
-double excessSquared(const SolverBody& before, const SolverBody& after,
-                     const MotionLimits& limits) {
-  const double linear =
-      (after.linearVelocity - before.linearVelocity).squaredNorm() / limits.maxSpeedSquared;
-  const double turn = (after.angularVelocity - before.angularVelocity) / limits.maxTurnRate;
-  return std::max(linear, turn * turn);
+void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits) {
+  const Vec2 va = a.linearVelocity, vb = b.linearVelocity;
+  const double wa = a.angularVelocity, wb = b.angularVelocity;
+  applyJointWarmStart(joint, a, b);
+  // How far past the motion limits the change of either body's velocity goes (squared).
+  auto excess = [&](const SolverBody& body, const Vec2& v, double w) {
+    const double turn = (body.angularVelocity - w) / limits.maxTurnRate;
+    return std::max((body.linearVelocity - v).squaredNorm() / limits.maxSpeedSquared, turn * turn);
+  };
+  const double worst = std::max(excess(a, va, wa), excess(b, vb, wb));
+  if (worst <= 1.0) return;
+  // Last step's impulse would change a body's velocity by more than the fastest it may move:
+  // a joint that cannot be met whose impulse grew from sub-step to sub-step while the motion
+  // limits ate its effect. Warm started whole, it would grow on without bound; so it starts
+  // from what the limits allow.
+  a.linearVelocity = va;
+  a.angularVelocity = wa;
+  b.linearVelocity = vb;
+  b.angularVelocity = wb;
+  scaleJointImpulses(joint, std::isfinite(worst) ? 1.0 / std::sqrt(worst) : 0.0);
+  applyJointWarmStart(joint, a, b);
 }
-
-}  // namespace
 
 void scaleJointImpulses(Joint& joint, double scale) {
   joint.pointImpulse *= scale;
@@ -154,24 +163,6 @@ void scaleJointImpulses(Joint& joint, double scale) {
   joint.upperImpulse *= scale;
   joint.angularImpulse *= scale;
   joint.lengthImpulse *= scale;
-}
-
-void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits) {
-  SolverBody trialA = a, trialB = b;
-  applyJointWarmStart(joint, trialA, trialB);
-  const double excess =
-      std::max(excessSquared(a, trialA, limits), excessSquared(b, trialB, limits));
-  if (excess <= 1.0) {
-    a = trialA;
-    b = trialB;
-    return;
-  }
-  // Last step's impulse would change a body's velocity by more than the fastest it may move:
-  // a joint that cannot be met (a loop that does not close, a pin fighting a kinematic body)
-  // whose impulse grew step after step while the motion limits ate its effect. Warm started
-  // whole, it would grow on without bound; so it starts from what the limits allow.
-  scaleJointImpulses(joint, std::isfinite(excess) ? 1.0 / std::sqrt(excess) : 0.0);
-  applyJointWarmStart(joint, a, b);
 }
 
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {

@@ -83,11 +83,12 @@ void initJoint(Joint& joint, const JointDef& def, const Body& a, const Body& b);
 /// sub-step for the soft step).
 void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def,
                   const Feedback& fb, double dt);
-/// Applies the impulses kept from the last step, scaled down when they would change a body's
-/// velocity by more than the motion limits of this pass allow.
-void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits);
-/// Applies the impulses kept from the last step as they are.
+/// Applies the impulses kept from the last step (warm_start_guard.hpp keeps them from growing
+/// without bound). Reads the joint only.
 void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b);
+/// applyJointWarmStart, scaled down when it would change a body's velocity by more than the
+/// motion limits of this pass allow.
+void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits);
 /// Scales every accumulated impulse of the joint.
 void scaleJointImpulses(Joint& joint, double scale);
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);

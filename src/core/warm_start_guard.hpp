@@ -26,10 +26,11 @@ class WarmStartGuard {
   /// `joints` are the step's active joints, `contacts` the step's contacts (impulses not yet
   /// handed to the solver); rowOf(slot) is the solver row of a dynamic body (members of a welded
   /// cluster share one) or -1, below `rows`; view(slot) a joint's view of the body (its row's
-  /// velocity, masses and centre of mass); prepare(joint, a, b) computes the joint's rows.
-  template <class RowOf, class View, class Prepare>
+  /// velocity, masses and centre of mass). The joints' arms are those of their last pass (this
+  /// step's or the last step's): close enough to weigh an energy, and no joint is prepared twice.
+  template <class RowOf, class View>
   void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows, RowOf rowOf,
-           View view, Prepare prepare, double gravityStep) {
+           View view, double gravityStep) {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();
@@ -84,13 +85,12 @@ class WarmStartGuard {
     }
     // The trial: the joints' warm start, then the contacts', as the solvers apply them.
     for (size_t k = 0; k < joints.size(); ++k) {
-      Joint trial = *joints[k];
-      SolverBody a = view(trial.bodyA), b = view(trial.bodyB);
+      Joint& joint = *joints[k];
+      SolverBody a = view(joint.bodyA), b = view(joint.bodyB);
       const auto [la, lb] = ends_[k];
       if (la >= 0) a.linearVelocity = bodies_[la].trialV, a.angularVelocity = bodies_[la].trialW;
       if (lb >= 0) b.linearVelocity = bodies_[lb].trialV, b.angularVelocity = bodies_[lb].trialW;
-      prepare(trial, a, b);
-      applyJointWarmStart(trial, a, b);
+      applyJointWarmStart(joint, a, b);  // reads the joint only
       if (la >= 0) bodies_[la].trialV = a.linearVelocity, bodies_[la].trialW = a.angularVelocity;
       if (lb >= 0) bodies_[lb].trialV = b.linearVelocity, bodies_[lb].trialW = b.angularVelocity;
     }

@@ -253,6 +253,7 @@ void WorldImpl::solve(double dt) {
   Feedback fb;  // NGS: no bias, its position pass corrects the drift
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
   fb.maxPush = def.maxPushVelocity;
+  prepareJoints(fb, dt);
   guardedJoints.clear();
   for (const int j : activeJoints) guardedJoints.push_back(&joints.items[j]);
   warmStartGuard.run(
@@ -261,11 +262,8 @@ void WorldImpl::solve(double dt) {
         const int entry = solverBodies.movingEntryOf(slot);
         return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
       },
-      [&](int slot) { return solverBodies.view(slot); },
-      [&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, fb, dt); },
-      def.gravity.norm() * dt);
+      [&](int slot) { return solverBodies.view(slot); }, def.gravity.norm() * dt);
   contactSolver.prepare(contacts, solverBodies, def, dt);
-  prepareJoints(fb, dt);
 
   // Warm start: apply last step's impulses first, so the iterations only refine them.
   warmStartJoints();

@@ -171,9 +171,7 @@ void WorldImpl::solveSubsteps(double dt) {
   warmStartGuard.run(
       guardedJoints, contacts, sb.dynamicCount(),
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
-      [&](int slot) { return sb.view(slot); },
-      [&](Joint& j, SolverBody& a, SolverBody& b) { prepareJoint(j, a, b, def, firstFeedback, h); },
-      def.gravity.norm() * dt);
+      [&](int slot) { return sb.view(slot); }, def.gravity.norm() * dt);
   stepWorkers.stage(contactBlocks, [&](int block, int) {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
     contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
