@@ -20,6 +20,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "world_impl.hpp"
 
@@ -58,32 +60,123 @@ void moveOut(std::vector<Body>& bodies, const int* begin, const int* end, const 
 }  // namespace
 
 void WorldImpl::keepOutOfStatic() {
-  for (const Contact& contact : contacts) {
+  // The deep ones first, by body (in slot order, then contact order: deterministic).
+  std::vector<DeepStatic>& deep = deepStatic;
+  deep.clear();
+  clusterPush.assign(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& contact = contacts[i];
     if (contact.manifold.pointCount == 0) continue;
     const bool staticA = bodies.items[contact.bodyA].type == BodyType::Static;
     const bool staticB = bodies.items[contact.bodyB].type == BodyType::Static;
     if (staticA == staticB) continue;
     const int slot = staticA ? contact.bodyB : contact.bodyA;
-    Body& body = bodies.items[slot];
-    if (!isActive(body)) continue;
-    const Body& wall = bodies.items[staticA ? contact.bodyA : contact.bodyB];
-    const Shape& wallShape = wall.shapes[staticA ? contact.shapeA : contact.shapeB];
-    const Shape& shape = body.shapes[staticA ? contact.shapeB : contact.shapeA];
+    if (!isActive(bodies.items[slot])) continue;
     // The manifold's normal points from A to B.
     const Vec2 n = staticA ? contact.manifold.normal : Vec2(-contact.manifold.normal);
-    const double depth = reachAlong(wallShape, wall.xf, n) + reachAlong(shape, body.xf, -n);
-    const double allowed =
-        std::max(2.0 * def.linearSlop, 0.25 * std::min(innerRadius(wallShape), body.minExtent));
-    if (!(depth > allowed)) continue;
-    const Vec2 push = (depth - def.linearSlop) * n;
-    const int cluster = weldClusters.clusterOf(slot);
-    if (cluster < 0) {
-      moveOut(bodies.items, &slot, &slot + 1, push, n);
-    } else {
-      moveOut(bodies.items, weldClusters.membersBegin(cluster), weldClusters.membersEnd(cluster),
-              push, n);
+    if (staticDepth(contact, n) > allowedDepth(contact)) {
+      deep.push_back({slot, static_cast<int>(i), n});
     }
   }
+  std::sort(deep.begin(), deep.end(), [](const DeepStatic& x, const DeepStatic& y) {
+    return x.slot != y.slot ? x.slot < y.slot : x.contact < y.contact;
+  });
+  for (size_t first = 0; first < deep.size();) {
+    size_t end = first + 1;
+    while (end < deep.size() && deep[end].slot == deep[first].slot) ++end;
+    if (!escapeSeam(deep.data() + first, deep.data() + end)) {
+      // One push per contact, each measured where the last one left the body.
+      for (size_t k = first; k < end; ++k) {
+        const Contact& contact = contacts[static_cast<size_t>(deep[k].contact)];
+        const double depth = staticDepth(contact, deep[k].n);
+        if (depth > allowedDepth(contact)) {
+          pushOut(deep[k].slot, (depth - def.linearSlop) * deep[k].n, deep[k].n);
+        }
+      }
+    }
+    first = end;
+  }
+}
+
+// The static shape's and the body's shape of a contact between a static and a dynamic body.
+std::pair<const Shape*, const Shape*> WorldImpl::staticPair(const Contact& contact) const {
+  const bool staticA = bodies.items[contact.bodyA].type == BodyType::Static;
+  const Body& wall = bodies.items[staticA ? contact.bodyA : contact.bodyB];
+  const Body& body = bodies.items[staticA ? contact.bodyB : contact.bodyA];
+  return {&wall.shapes[staticA ? contact.shapeA : contact.shapeB],
+          &body.shapes[staticA ? contact.shapeB : contact.shapeA]};
+}
+
+double WorldImpl::staticDepth(const Contact& contact, const Vec2& n) const {
+  const bool staticA = bodies.items[contact.bodyA].type == BodyType::Static;
+  const Body& wall = bodies.items[staticA ? contact.bodyA : contact.bodyB];
+  const Body& body = bodies.items[staticA ? contact.bodyB : contact.bodyA];
+  const auto [wallShape, shape] = staticPair(contact);
+  return reachAlong(*wallShape, wall.xf, n) + reachAlong(*shape, body.xf, -n);
+}
+
+double WorldImpl::allowedDepth(const Contact& contact) const {
+  const bool staticA = bodies.items[contact.bodyA].type == BodyType::Static;
+  const Body& body = bodies.items[staticA ? contact.bodyB : contact.bodyA];
+  return std::max(2.0 * def.linearSlop,
+                  0.25 * std::min(innerRadius(*staticPair(contact).first), body.minExtent));
+}
+
+void WorldImpl::pushOut(int slot, const Vec2& push, const Vec2& n) {
+  const int cluster = weldClusters.clusterOf(slot);
+  // A welded cluster moves whole, unless this step already pushed it the other way: then it is
+  // jammed (a rigid assembly taller or wider than the space it is in, between the ground and
+  // the ceiling), and the member alone goes out. That opens its weld, which leaves the cluster
+  // until it closes again (weld_clusters.cpp) and is solved as a joint meanwhile: the welds give,
+  // not the walls.
+  if (cluster >= 0) {
+    if (clusterPush.size() < static_cast<size_t>(weldClusters.count())) {
+      clusterPush.resize(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
+    }
+    Vec2& first = clusterPush[static_cast<size_t>(cluster)];
+    if (first.isZero()) first = n;
+    if (first.dot(n) >= -0.3) {
+      moveOut(bodies.items, weldClusters.membersBegin(cluster), weldClusters.membersEnd(cluster),
+              push, n);
+      return;
+    }
+  }
+  moveOut(bodies.items, &slot, &slot + 1, push, n);
+}
+
+// Where two static boxes meet (a wall standing on the ground), their faces inside the union
+// point at each other:
+//
+//      | wall |
+//      |      |                 a body pushed into the corner below the wall's foot is told
+//      |  [#] |  <- n = down    "up" by the ground and "down" by the wall: pushed along each
+//   ===|==[#]=|============     in turn it stays, and creeps along the seam, out of the far
+//      ground    n = up         side. Out of the seam it goes along the seam instead, the
+//                               shorter way out of one of the two.
+//
+// Returns false (nothing done) when the body is in no seam, or when the way out along it is
+// longer than a few of its sizes (a long rigid assembly jammed between two walls far apart:
+// then the pushes along the normals are the best there is).
+bool WorldImpl::escapeSeam(const DeepStatic* begin, const DeepStatic* end) {
+  for (const DeepStatic* i = begin; i != end; ++i) {
+    for (const DeepStatic* j = i + 1; j != end; ++j) {
+      if (!(i->n.dot(j->n) < -0.5)) continue;
+      const Contact& ci = contacts[static_cast<size_t>(i->contact)];
+      const Contact& cj = contacts[static_cast<size_t>(j->contact)];
+      const Vec2 along = perp(i->n);
+      double best = std::numeric_limits<double>::infinity();
+      Vec2 way = Vec2::Zero();
+      for (const Vec2& d : {along, Vec2(-along)}) {
+        const double out = std::min(staticDepth(ci, d), staticDepth(cj, d));
+        if (out < best) best = out, way = d;
+      }
+      const Body& body = bodies.items[i->slot];
+      if (!(best <= std::max(4.0 * body.maxExtent, 0.5))) return false;
+      pushOut(i->slot, (best + def.linearSlop) * way, way);
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace impulse2d

@@ -1,6 +1,7 @@
 #include "weld_clusters.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "joint.hpp"
 
@@ -8,6 +9,23 @@ namespace impulse2d {
 namespace {
 
 bool mergeable(const Body& body) { return body.type == BodyType::Dynamic && body.awake; }
+
+// A weld opened further than this (m at the anchor, rad) is solved as a joint until it closes:
+// a cluster keeps its members' poses as it finds them, and would hold the error for ever.
+constexpr double kMaxClusterGap = 0.02;
+constexpr double kMaxClusterTurn = 0.02;
+
+bool closed(const Joint& joint, const Body& a, const Body& b) {
+  const Vec2 gap = b.xf.apply(joint.localAnchorB) - a.xf.apply(joint.localAnchorA);
+  const double turn = b.angle - a.angle - joint.referenceAngle;
+  return gap.squaredNorm() <= kMaxClusterGap * kMaxClusterGap && std::abs(turn) <= kMaxClusterTurn;
+}
+
+bool merges(const Joint& joint, const std::vector<Body>& bodies) {
+  const Body& a = bodies[joint.bodyA];
+  const Body& b = bodies[joint.bodyB];
+  return isRigidWeld(joint) && mergeable(a) && mergeable(b) && closed(joint, a, b);
+}
 
 }  // namespace
 
@@ -28,8 +46,7 @@ void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<char>
   bool anyWeld = false;
   for (size_t j = 0; j < joints.size() && !anyWeld; ++j) {
     const Joint& joint = joints[j];
-    anyWeld = jointAlive[j] && isRigidWeld(joint) && mergeable(bodies[joint.bodyA]) &&
-              mergeable(bodies[joint.bodyB]);
+    anyWeld = jointAlive[j] && merges(joint, bodies);
   }
   if (!anyWeld) return;
 
@@ -38,8 +55,7 @@ void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<char>
   for (int i = 0; i < slots; ++i) parent_[i] = i;
   for (size_t j = 0; j < joints.size(); ++j) {
     const Joint& joint = joints[j];
-    if (!jointAlive[j] || !isRigidWeld(joint)) continue;
-    if (!mergeable(bodies[joint.bodyA]) || !mergeable(bodies[joint.bodyB])) continue;
+    if (!jointAlive[j] || !merges(joint, bodies)) continue;
     const int a = findRoot(joint.bodyA), b = findRoot(joint.bodyB);
     if (a != b) parent_[std::max(a, b)] = std::min(a, b);  // the lowest slot stays the root
   }

@@ -204,7 +204,18 @@ struct WorldImpl {
   bool isFast(const Body& body, const Vec2& move, double turn, double arm) const;
   /// The one-pass solvers' fast bodies, from the whole step's motion of each dynamic entry.
   void findOnePassFastBodies();
-  void keepOutOfStatic();
+  void keepOutOfStatic();  // keep_out_of_static.cpp, with the helpers below
+  struct DeepStatic {      // a body deeper in a static one than it may be
+    int slot, contact;
+    Vec2 n;  // the contact's normal when the step began, out of the static body
+  };
+  std::vector<DeepStatic> deepStatic;  // reused
+  std::vector<Vec2> clusterPush;       // by welded cluster: the first push out this step
+  std::pair<const Shape*, const Shape*> staticPair(const Contact& contact) const;
+  double staticDepth(const Contact& contact, const Vec2& n) const;
+  double allowedDepth(const Contact& contact) const;
+  void pushOut(int slot, const Vec2& push, const Vec2& n);
+  bool escapeSeam(const DeepStatic* begin, const DeepStatic* end);
   void solveContinuous();
   void updateSleep(double dt);
   void clearForces();

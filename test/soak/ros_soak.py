@@ -66,7 +66,8 @@ class Client:
         self.bodies, self.joints, self.next_name = [], [], 0
         self.last = []  # the last calls, for a failure report
         self.counts = {"calls": 0, "slow": 0, "bad": 0, "bad_accepted": 0, "refused": 0,
-                       "unexpected": 0, "errors": 0, "bodies_made": 0, "joints_made": 0}
+                       "unexpected": 0, "errors": 0, "bodies_made": 0, "joints_made": 0,
+                       "slowest_ms": 0}
         self.failures = []
         self.proxies = {}
 
@@ -91,6 +92,7 @@ class Client:
             self.fail("%s raised %s" % (name, e))
             return None
         took = time.monotonic() - start
+        self.counts["slowest_ms"] = max(self.counts["slowest_ms"], int(1000 * took))
         if took > SLOW_CALL:
             self.counts["slow"] += 1
             self.fail("%s took %.2f s" % (name, took))
@@ -437,7 +439,7 @@ def run_mode(mode, args, port):
         failures = []
         for res in results:
             for k, v in res["counts"].items():
-                counts[k] = counts.get(k, 0) + v
+                counts[k] = max(counts.get(k, 0), v) if k == "slowest_ms" else counts.get(k, 0) + v
             failures += res["failures"]
         slow = [f for f in failures if " took " in f or " raised " in f]
         refused = [f for f in failures if "accepted" in f or "refused" in f]
@@ -457,10 +459,12 @@ def run_mode(mode, args, port):
         cases.append(("%s: the world alive at the end" % mode, None if alive else "the world is gone"))
         cases.append(("%s: topics flowing" % mode,
                       None if all(seen[k] > 0 for k in seen) else "received %s" % seen))
-        print("ros soak %s seed %d: %d s, %d clients, %d calls (%d bad, refused), %d bodies and %d "
-              "joints made, %d removed, slowest events %s, RSS %s -> %s KiB, messages %s"
+        print("ros soak %s seed %d: %d s, %d clients, %d calls (%d bad, refused; slowest %d ms), %d "
+              "bodies and %d joints made, %d removed, reset and load_scene %s, RSS %s -> %s KiB, "
+              "messages %s"
               % (mode, args.seed, args.seconds, args.clients, counts.get("calls", 0),
-                 counts.get("bad", 0) - counts.get("bad_accepted", 0), counts.get("bodies_made", 0),
+                 counts.get("bad", 0) - counts.get("bad_accepted", 0), counts.get("slowest_ms", 0),
+                 counts.get("bodies_made", 0),
                  counts.get("joints_made", 0), removed["count"], events, rss_start, rss_end, seen),
               flush=True)
         for f in failures[:10]:

@@ -492,7 +492,10 @@ class Soak {
     for (const RemovedBody& r : world_.takeRemovedBodies()) {
       violation("the world removed " + r.name + ": " + r.reason);
     }
-    if (world_.lostBodyCount() > 0) violation("a body was found lost for good");
+    for (const LostBody& lost : world_.takeLostBodies()) {
+      violation(lost.name + " was found lost for good, at " + str(lost.position) + ": " +
+                lost.reason);
+    }
     const WorldDef& def = world_.settings();
     const int substeps = usesSubsteps(def.solver) ? std::max(1, def.velocityIterations) : 1;
     const double maxTurnRate = def.maxRotation * substeps / def.timeStep;

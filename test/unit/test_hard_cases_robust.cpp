@@ -147,8 +147,11 @@ TEST(HardCasesRobust, TeleportingOrSettingTheVelocityOfAWeldedBodyMovesTheAssemb
 //   seed 1: NaN from a joint's warm start grown without bound under the speed limit (substep);
 //           energy pumped by joint feedback pushing at rate x error (baumgarte, soft); a welded
 //           cluster sped up by taking one member's velocity into a wall (soft).
+//   seed 93: a rigid assembly as wide as the arena jammed between the walls (substep).
+//   seed 271: a small body welded 12 m from its partner crept along the seam under a wall's foot
+//           and out of the arena (ngs).
 TEST(HardCasesRobust, SoakSeedsThatOnceFailedNowHold) {
-  for (const uint64_t seed : {1, 2, 3}) {
+  for (const uint64_t seed : {1, 2, 3, 93, 271}) {
     for (const SolverType solver : kSolvers) {
       soak::Options options;
       options.seed = seed;
