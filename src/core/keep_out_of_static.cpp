@@ -155,12 +155,12 @@ void WorldImpl::pushOut(int slot, const Vec2& push, const Vec2& n) {
 //                               shorter way out of one of the two.
 //
 // Returns false (nothing done) when the body is in no seam, or when the way out along it is
-// longer than a few of its sizes (a long rigid assembly jammed between two walls far apart:
+// longer than twice its size (a long rigid assembly jammed between two walls far apart:
 // then the pushes along the normals are the best there is).
 bool WorldImpl::escapeSeam(const DeepStatic* begin, const DeepStatic* end) {
   for (const DeepStatic* i = begin; i != end; ++i) {
     for (const DeepStatic* j = i + 1; j != end; ++j) {
-      if (!(i->n.dot(j->n) < -0.5)) continue;
+      if (!(i->n.dot(j->n) < -0.9)) continue;  // faces that meet (not a corner's vertex)
       const Contact& ci = contacts[static_cast<size_t>(i->contact)];
       const Contact& cj = contacts[static_cast<size_t>(j->contact)];
       const Vec2 along = perp(i->n);
@@ -171,7 +171,7 @@ bool WorldImpl::escapeSeam(const DeepStatic* begin, const DeepStatic* end) {
         if (out < best) best = out, way = d;
       }
       const Body& body = bodies.items[i->slot];
-      if (!(best <= std::max(4.0 * body.maxExtent, 0.5))) return false;
+      if (!(best <= std::max(2.0 * body.maxExtent, 0.25))) return false;
       pushOut(i->slot, (best + def.linearSlop) * way, way);
       return true;
     }
