@@ -32,13 +32,7 @@ void SolverBodies::addCluster(const WeldClusters& clusters, int cluster) {
   e.center = r.center;
   loads_[entry] = {r.force,          r.torque,   r.linearDamping,
                    r.angularDamping, r.velocity, r.angularVelocity};
-  clusterOfEntry_[entry] = cluster;
-  for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
-    memberOfSlot_[*m] = static_cast<int>(members_.size());
-    indexOfSlot_[*m] = entry;
-    members_.push_back(memberStart(bodies[*m], *m, r.center));
-  }
-  memberFirst_.push_back(static_cast<int>(members_.size()));
+  clusterRows_.add(clusters, cluster, bodies, r.center, entry, indexOfSlot_);
 }
 
 void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
@@ -58,15 +52,8 @@ void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<cha
     if (type == BodyType::Dynamic) dynamicCount_ = static_cast<int>(entries_.size());
   }
   movingCount_ = static_cast<int>(entries_.size());
-  members_.clear();
-  memberFirst_.assign(1, 0);
-  memberOfSlot_.clear();
-  clusterOfEntry_.clear();
-  if (clusters.any()) {
-    memberOfSlot_.assign(bodies.size(), -1);
-    clusterOfEntry_.assign(static_cast<size_t>(dynamicCount_), -1);
-    for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c);
-  }
+  clusterRows_.reset(clusters, bodies.size(), static_cast<size_t>(dynamicCount_));
+  for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c);
 }
 
 int SolverBodies::entryOf(int slot) {
@@ -76,11 +63,10 @@ int SolverBodies::entryOf(int slot) {
 
 SolverBody SolverBodies::view(int slot) {
   SolverBody e = entries_[entryOf(slot)];
-  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {
-    const MemberStart& m = members_[memberOfSlot_[slot]];
-    e.q = m.q0 * e.q;  // the cluster's entry turns from 0
-    e.angle += m.angle0;
-    e.localCenter = m.viewLocalCenter;
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {
+    e.q = m->q0 * e.q;  // the cluster's entry turns from 0
+    e.angle += m->angle0;
+    e.localCenter = m->viewLocalCenter;
   }
   return e;
 }
@@ -95,10 +81,9 @@ void SolverBodies::store(int slot, const SolverBody& view, bool pose) {
   e.center = view.center;
   e.angle = view.angle;
   e.q = view.q;
-  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {
-    const MemberStart& m = members_[memberOfSlot_[slot]];
-    e.angle -= m.angle0;
-    e.q = m.q0.inverseTimes(view.q);
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {
+    e.angle -= m->angle0;
+    e.q = m->q0.inverseTimes(view.q);
   }
 }
 
@@ -114,7 +99,7 @@ void SolverBodies::storeMotion(std::vector<Body>& bodies) const {
     const SolverBody& entry = entries_[e];
     const auto [first, last] = membersOf(e);
     for (int k = first; k < last; ++k) {  // a cluster: its members, rigidly
-      const MemberStart& m = members_[k];
+      const MemberStart& m = clusterRows_.member(k);
       Body& body = bodies[m.slot];
       body.center = entry.center + entry.q.apply(m.offset);
       body.angle = m.angle0 + entry.angle;

@@ -109,13 +109,8 @@ class SolverBodies {
   void store(int slot, const SolverBody& view, bool pose);
   /// The members of the cluster whose entry is `entry` ([first, last) of member()), or an empty
   /// range for a body alone.
-  std::pair<int, int> membersOf(int entry) const {
-    if (clusterOfEntry_.empty() || entry >= dynamicCount_ || clusterOfEntry_[entry] < 0) {
-      return {0, 0};
-    }
-    return {memberFirst_[clusterOfEntry_[entry]], memberFirst_[clusterOfEntry_[entry] + 1]};
-  }
-  const MemberStart& member(int index) const { return members_[index]; }
+  std::pair<int, int> membersOf(int entry) const { return clusterRows_.ofRow(entry); }
+  const MemberStart& member(int index) const { return clusterRows_.member(index); }
 
   /// Gives the kinematic entries their prescribed velocities back: impulses cannot change them
   /// (infinite mass) unless they are not finite, and then they must not move the body.
@@ -135,11 +130,7 @@ class SolverBodies {
   static constexpr int kNone = std::numeric_limits<int>::max();
   std::vector<int> indexOfSlot_;  // by body slot; kNone when the body has no entry
   int dynamicCount_ = 0, movingCount_ = 0;
-  // Welded clusters; all empty when there are none.
-  std::vector<MemberStart> members_;
-  std::vector<int> memberFirst_;     // by cluster, into members_ (one past the last at the end)
-  std::vector<int> memberOfSlot_;    // by body slot, into members_, or -1
-  std::vector<int> clusterOfEntry_;  // by dynamic entry, or -1
+  ClusterRows clusterRows_;  // the welded clusters' members, by dynamic entry
 };
 
 }  // namespace impulse2d

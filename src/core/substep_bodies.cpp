@@ -4,6 +4,22 @@
 #include <cmath>
 
 namespace impulse2d {
+namespace {
+
+// What gravity, a force and a torque add over a sub-step h, and the damping factors of one.
+BodyLoad loadOver(double h, const Vec2& gravity, double invMass, double invInertia,
+                  const Vec2& force, double torque, double linearDamping, double angularDamping) {
+  BodyLoad load;
+  load.dvx = h * (gravity.x() + invMass * force.x());
+  load.dvy = h * (gravity.y() + invMass * force.y());
+  load.dw = h * invInertia * torque;
+  // Implicit damping: stable for any coefficient and sub-step.
+  if (linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * linearDamping);
+  if (angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * angularDamping);
+  return load;
+}
+
+}  // namespace
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
                            const Vec2& gravity, double h, const MotionLimits& limits,
@@ -55,15 +71,8 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   for (const std::vector<int>& list : overflowedOfBlock_) {
     overflowed_.insert(overflowed_.end(), list.begin(), list.end());
   }
-  members_.clear();
-  memberFirst_.assign(1, 0);
-  memberOfSlot_.clear();
-  clusterOfEntry_.clear();
-  if (clusters.any()) {
-    memberOfSlot_.assign(bodies.size(), -1);
-    clusterOfEntry_.assign(static_cast<size_t>(movingCount_), -1);
-    for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c, gravity, h);
-  }
+  clusterRows_.reset(clusters, bodies.size(), static_cast<size_t>(movingCount_));
+  for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c, gravity, h);
   // The identity row and the sinks.
   std::fill(states_.begin() + movingCount_, states_.end(), BodyState());
 }
@@ -87,13 +96,8 @@ bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravi
     sim.invMass = body.invMass;
     sim.invInertia = body.invInertia;
     BodyLoad& load = loads_[entry];
-    load = BodyLoad();
-    load.dvx = h * (gravity.x() + body.invMass * body.force.x());
-    load.dvy = h * (gravity.y() + body.invMass * body.force.y());
-    load.dw = h * body.invInertia * body.torque;
-    // Implicit damping: stable for any coefficient and sub-step.
-    if (body.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * body.linearDamping);
-    if (body.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * body.angularDamping);
+    load = loadOver(h, gravity, body.invMass, body.invInertia, body.force, body.torque,
+                    body.linearDamping, body.angularDamping);
     // The last guard against non-finite impulses (0 x inf is NaN in the static bodies' rows,
     // which every body touching them reads): a state or load that is not finite. The body
     // stands still with infinite mass for the step and is removed at its end
@@ -132,19 +136,9 @@ void SubstepBodies::addCluster(const WeldClusters& clusters, int cluster, const 
   start = BodyStart();  // the cluster's frame: at its centre of mass, angle 0
   start.slot = root;
   BodyLoad& load = loads_[entry];
-  load = BodyLoad();
-  load.dvx = h * (gravity.x() + sim.invMass * r.force.x());
-  load.dvy = h * (gravity.y() + sim.invMass * r.force.y());
-  load.dw = h * sim.invInertia * r.torque;
-  if (r.linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * r.linearDamping);
-  if (r.angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * r.angularDamping);
-  clusterOfEntry_[entry] = cluster;
-  for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
-    memberOfSlot_[*m] = static_cast<int>(members_.size());
-    entryOfSlot_[*m] = entry;
-    members_.push_back(memberStart(bodies[*m], *m, r.center));
-  }
-  memberFirst_.push_back(static_cast<int>(members_.size()));
+  load = loadOver(h, gravity, sim.invMass, sim.invInertia, r.force, r.torque, r.linearDamping,
+                  r.angularDamping);
+  clusterRows_.add(clusters, cluster, bodies, r.center, entry, entryOfSlot_);
   const bool finite = std::isfinite(state.vx + state.vy + state.w) &&
                       std::isfinite(load.dvx + load.dvy + load.dw) &&
                       std::isfinite(sim.invMass + sim.invInertia) && isFinite(sim.center0);
@@ -212,11 +206,10 @@ SolverBody SubstepBodies::view(int slot) const {
   e.angle = start.angle0 + s.turned;
   e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
   e.localCenter = start.localCenter;
-  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {  // its cluster, seen from it
-    const MemberStart& m = members_[memberOfSlot_[slot]];
-    e.angle = m.angle0 + s.turned;
-    e.q = m.q0 * Rot::fromCosSin(s.qc, s.qs);
-    e.localCenter = m.viewLocalCenter;
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {  // its cluster, seen from it
+    e.angle = m->angle0 + s.turned;
+    e.q = m->q0 * Rot::fromCosSin(s.qc, s.qs);
+    e.localCenter = m->viewLocalCenter;
   }
   return e;
 }
@@ -232,9 +225,9 @@ void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
   const BodySim& sim = sims_[entry];
   double angle0 = starts_[entry].angle0;
   Rot q0 = starts_[entry].q0;
-  if (!memberOfSlot_.empty() && memberOfSlot_[slot] >= 0) {
-    angle0 = members_[memberOfSlot_[slot]].angle0;
-    q0 = members_[memberOfSlot_[slot]].q0;
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {
+    angle0 = m->angle0;
+    q0 = m->q0;
   }
   s.dx = view.center.x() - sim.center0.x();
   s.dy = view.center.y() - sim.center0.y();
@@ -262,7 +255,7 @@ void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const 
   for (int e = begin; e < std::min(end, movingCount_); ++e) {
     const auto [first, last] = membersOf(e);
     if (first < last) {
-      for (int k = first; k < last; ++k) finishMember(bodies, e, members_[k]);
+      for (int k = first; k < last; ++k) finishMember(bodies, e, clusterRows_.member(k));
       continue;
     }
     const BodyState& s = states_[e];

@@ -111,11 +111,8 @@ class SubstepBodies {
 
   /// The members of the cluster whose row is `entry` ([begin, end) of members()), or an empty
   /// range for a body alone.
-  std::pair<int, int> membersOf(int entry) const {
-    if (clusterOfEntry_.empty() || clusterOfEntry_[entry] < 0) return {0, 0};
-    return {memberFirst_[clusterOfEntry_[entry]], memberFirst_[clusterOfEntry_[entry] + 1]};
-  }
-  const MemberStart& member(int index) const { return members_[index]; }
+  std::pair<int, int> membersOf(int entry) const { return clusterRows_.ofRow(entry); }
+  const MemberStart& member(int index) const { return clusterRows_.member(index); }
 
   /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin,
   /// end) back to the bodies.
@@ -141,11 +138,7 @@ class SubstepBodies {
   std::vector<int> overflowed_;  // slots, in slot order
   int dynamicCount_ = 0, movingCount_ = 0;
   MotionLimits limits_;
-  // Welded clusters; all empty when there are none.
-  std::vector<MemberStart> members_;
-  std::vector<int> memberFirst_;     // by cluster, into members_ (one past the last at the end)
-  std::vector<int> memberOfSlot_;    // by body slot, into members_, or -1
-  std::vector<int> clusterOfEntry_;  // by entry, or -1
+  ClusterRows clusterRows_;  // the welded clusters' members, by entry
 };
 
 }  // namespace impulse2d

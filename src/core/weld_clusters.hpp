@@ -15,6 +15,7 @@
 
 #include <impulse2d/body.hpp>
 
+#include <utility>
 #include <vector>
 
 namespace impulse2d {
@@ -90,6 +91,53 @@ class WeldClusters {
   std::vector<int> roots_;          // by cluster
   std::vector<int> first_;          // by cluster, into members_ (one past the last at the end)
   std::vector<int> members_;
+};
+
+/// Where a step's solver rows put the welded clusters' members: shared by the one-pass solvers'
+/// SolverBodies and the sub-stepping solvers' SubstepBodies, which both give each cluster one
+/// row (its root's) that every member's slot maps to. Empty when there are no clusters.
+class ClusterRows {
+ public:
+  /// Starts a step for `slots` bodies and `rows` solver rows.
+  void reset(const WeldClusters& clusters, size_t slots, size_t rows) {
+    members_.clear();
+    first_.assign(1, 0);
+    memberOfSlot_.clear();
+    clusterOfRow_.clear();
+    if (!clusters.any()) return;
+    memberOfSlot_.assign(slots, -1);
+    clusterOfRow_.assign(rows, -1);
+  }
+  /// Records the members of `cluster`, whose centre of mass is `center`, as moving with `row`,
+  /// and points their slots in `rowOfSlot` at it.
+  void add(const WeldClusters& clusters, int cluster, const std::vector<Body>& bodies,
+           const Vec2& center, int row, std::vector<int>& rowOfSlot) {
+    clusterOfRow_[static_cast<size_t>(row)] = static_cast<int>(first_.size()) - 1;
+    for (const int* m = clusters.membersBegin(cluster); m != clusters.membersEnd(cluster); ++m) {
+      memberOfSlot_[static_cast<size_t>(*m)] = static_cast<int>(members_.size());
+      rowOfSlot[static_cast<size_t>(*m)] = row;
+      members_.push_back(memberStart(bodies[static_cast<size_t>(*m)], *m, center));
+    }
+    first_.push_back(static_cast<int>(members_.size()));
+  }
+  /// The member in `slot`, or null for a body alone.
+  const MemberStart* ofSlot(int slot) const {
+    if (memberOfSlot_.empty() || memberOfSlot_[static_cast<size_t>(slot)] < 0) return nullptr;
+    return &members_[static_cast<size_t>(memberOfSlot_[static_cast<size_t>(slot)])];
+  }
+  /// The members moving with `row` ([first, last) of member()), or an empty range.
+  std::pair<int, int> ofRow(int row) const {
+    if (clusterOfRow_.empty() || row >= static_cast<int>(clusterOfRow_.size())) return {0, 0};
+    const int c = clusterOfRow_[static_cast<size_t>(row)];
+    return c < 0 ? std::pair<int, int>(0, 0) : std::pair<int, int>(first_[c], first_[c + 1]);
+  }
+  const MemberStart& member(int index) const { return members_[static_cast<size_t>(index)]; }
+
+ private:
+  std::vector<MemberStart> members_;
+  std::vector<int> first_;  // by cluster recorded, into members_ (one past the last at the end)
+  std::vector<int> memberOfSlot_;  // by body slot, into members_, or -1
+  std::vector<int> clusterOfRow_;  // by row, or -1
 };
 
 /// The bodies rigidly welded to the body in `slot` (dynamic bodies joined by rigid welds,
