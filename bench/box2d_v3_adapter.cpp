@@ -2,8 +2,14 @@
 // pointed at a v3 build (IMPULSE2D_BENCH_BOX2D_V3_DIR, cmake/bench.cmake). It is driven as its own
 // benchmark app drives it: b2DefaultWorldDef with the scene's gravity and sleeping, 4 sub-steps
 // (velocityIterations) at 60 Hz, continuous collision on, native capsules and rounded polygons,
-// revolute springs. Its workers run on oneTBB (the task system impulse2d's threads will use):
-// each task v3 enqueues is a parallel_for over its items in an arena of `threads` slots.
+// revolute springs.
+//
+// Two APIs are taken: v3.1's (up to v3.1.1) and master's (from 2026: joint definitions share a
+// b2JointDef base with local frames, positions are b2Pos, and v3 runs its own worker threads
+// when given no task callbacks); cmake/bench.cmake tells them apart by that base in types.h and
+// defines IMPULSE2D_BOX2D_V3_MASTER. With v3.1 the workers run on oneTBB (each task v3 enqueues is
+// a parallel_for over its items in an arena of `threads` slots); with master they are v3's own
+// scheduler, as its benchmark app runs them.
 #include <box2d/box2d.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +25,7 @@ namespace {
 
 b2Vec2 toB2(const Vec2& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y())}; }
 
+#if !defined(IMPULSE2D_BOX2D_V3_MASTER)
 // v3 calls enqueueTask for work it splits into [start, end) ranges (at least minRange items) and
 // finishTask to wait for it; a worker index must be below workerCount, which the arena's slot
 // indices are.
@@ -55,6 +62,11 @@ class TbbTasks {
   std::deque<tbb::task_group> groups_;  // stable addresses
   size_t used_ = 0;
 };
+#else
+struct TbbTasks {  // master: v3's own threads
+  void reset() {}
+};
+#endif
 
 class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
  public:
@@ -68,12 +80,14 @@ class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
     def.gravity = toB2(scene.gravity);
     def.enableSleep = scene.sleep;
     def.workerCount = settings.threads;
+#if !defined(IMPULSE2D_BOX2D_V3_MASTER)
     if (settings.threads > 1) {
       tasks_ = std::make_unique<TbbTasks>(settings.threads);
       def.enqueueTask = TbbTasks::enqueue;
       def.finishTask = TbbTasks::finish;
       def.userTaskContext = tasks_.get();
     }
+#endif
     world_ = b2CreateWorld(&def);
     createGroup(-1);
   }
@@ -89,7 +103,11 @@ class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
         (*states)[i].alive = false;
         continue;
       }
+#if defined(IMPULSE2D_BOX2D_V3_MASTER)
+      const auto p = b2Body_GetWorldCenter(id);
+#else
       const b2Vec2 p = b2Body_GetWorldCenterOfMass(id);
+#endif
       const b2Vec2 v = b2Body_GetLinearVelocity(id);
       (*states)[i] = {Vec2(p.x, p.y), b2Rot_GetAngle(b2Body_GetRotation(id)), Vec2(v.x, v.y),
                       b2Body_GetAngularVelocity(id), true};
@@ -175,11 +193,23 @@ class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
   void createJoint(int index) override {
     const BenchJoint& joint = scene_->joints[index];
     b2RevoluteJointDef def = b2DefaultRevoluteJointDef();
+#if defined(IMPULSE2D_BOX2D_V3_MASTER)
+    // The joint angle is B's frame's angle less A's: A's frame turned by the reference angle
+    // makes it 0 at the reference, as v3.1's referenceAngle did.
+    b2JointDef& base = def.base;
+    base.bodyIdA = bodies_[joint.bodyA];
+    base.bodyIdB = bodies_[joint.bodyB];
+    base.localFrameA.p = b2Body_GetLocalPoint(base.bodyIdA, toB2(joint.anchor));
+    base.localFrameA.q = b2MakeRot(static_cast<float>(joint.referenceAngle));
+    base.localFrameB.p = b2Body_GetLocalPoint(base.bodyIdB, toB2(joint.anchor));
+    base.localFrameB.q = b2Rot_identity;
+#else
     def.bodyIdA = bodies_[joint.bodyA];
     def.bodyIdB = bodies_[joint.bodyB];
     def.localAnchorA = b2Body_GetLocalPoint(def.bodyIdA, toB2(joint.anchor));
     def.localAnchorB = b2Body_GetLocalPoint(def.bodyIdB, toB2(joint.anchor));
     def.referenceAngle = static_cast<float>(joint.referenceAngle);
+#endif
     def.enableLimit = joint.enableLimit;
     def.lowerAngle = static_cast<float>(joint.lower);
     def.upperAngle = static_cast<float>(joint.upper);
@@ -211,7 +241,11 @@ EngineInfo box2dV3Engine() {
   info.defaults.positionIterations = 0;
   info.make = [] { return std::make_unique<Box2dV3Adapter>(); };
   info.refuses = [](const SceneSpec&, const EngineSettings& settings) -> std::string {
-    if (settings.threads > 64) return "Box2D v3 takes at most 64 workers (B2_MAX_WORKERS)";
+#if defined(IMPULSE2D_BOX2D_V3_MASTER)
+    if (settings.threads > 32) return "Box2D v3 master takes at most 32 workers (B2_MAX_WORKERS)";
+#else
+    if (settings.threads > 64) return "Box2D v3.1 takes at most 64 workers (B2_MAX_WORKERS)";
+#endif
     return "";
   };
   return info;

@@ -57,13 +57,20 @@ if(IMPULSE2D_BENCH_BOX2D_V3_DIR)
     message(FATAL_ERROR "IMPULSE2D_BENCH_BOX2D_V3_DIR=${IMPULSE2D_BENCH_BOX2D_V3_DIR} holds no "
       "include/box2d/box2d.h and libbox2d.a (a Box2D v3 build or install)")
   endif()
-  # TBB::tbb: found by cmake/core.cmake (the core's threads run on oneTBB too).
-  message(STATUS "impulse2d_bench: with Box2D v3 (${IMPULSE2D_BOX2D_V3_LIBRARY}, workers on oneTBB)")
+  # TBB::tbb: found by cmake/core.cmake (the core's threads run on oneTBB too; v3.1's workers).
+  message(STATUS "impulse2d_bench: with Box2D v3 (${IMPULSE2D_BOX2D_V3_LIBRARY})")
   target_sources(impulse2d_bench PRIVATE bench/box2d_v3_adapter.cpp)
   set_source_files_properties(bench/box2d_v3_adapter.cpp PROPERTIES
     COMPILE_OPTIONS "-isystem;${IMPULSE2D_BOX2D_V3_INCLUDE_DIR}")
   target_link_libraries(impulse2d_bench PRIVATE ${IMPULSE2D_BOX2D_V3_LIBRARY} TBB::tbb)
   target_compile_definitions(impulse2d_bench PRIVATE IMPULSE2D_BENCH_BOX2D_V3)
+  # Master (2026) gave every joint definition a b2JointDef base: the adapter takes either API.
+  file(STRINGS ${IMPULSE2D_BOX2D_V3_INCLUDE_DIR}/box2d/types.h IMPULSE2D_BOX2D_V3_JOINT_BASE
+    REGEX "b2JointDef base;")
+  if(IMPULSE2D_BOX2D_V3_JOINT_BASE)
+    message(STATUS "impulse2d_bench: Box2D v3 master's API (joint bases; v3's own worker threads)")
+    target_compile_definitions(impulse2d_bench PRIVATE IMPULSE2D_BOX2D_V3_MASTER)
+  endif()
 endif()
 
 if(NOT IMPULSE2D_CORE_ONLY)
