@@ -63,28 +63,15 @@ LaneBody laneBody(const SubstepBodies& bodies, const std::vector<Body>& items, i
 }
 
 void setPoint(ContactBundle& c, int i, int lane, double anchorAx, double anchorAy, double anchorBx,
-              double anchorBy, double baseSeparation, double normalMass, double tangentMass,
-              double normalImpulse, double tangentImpulse) {
+              double anchorBy, double baseSeparation, double normalImpulse, double tangentImpulse) {
   BundlePoint& p = c.points[i];
   p.anchorAx[lane] = anchorAx;
   p.anchorAy[lane] = anchorAy;
   p.anchorBx[lane] = anchorBx;
   p.anchorBy[lane] = anchorBy;
   c.baseSeparation[i][lane] = static_cast<float>(baseSeparation);
-  c.normalMass[i][lane] = static_cast<float>(normalMass);
-  c.tangentMass[i][lane] = static_cast<float>(tangentMass);
   p.normalImpulse[lane] = normalImpulse;
   p.tangentImpulse[lane] = tangentImpulse;
-}
-
-// The largest |h| for which a row with arms armA, armB (K = k) keeps K <= 1.5 k when its arms
-// become armA + h and armB - h: K grows by at most S h^2 + 2 B |h| (S = iA + iB,
-// B = iA |armA| + iB |armB|), which is k / 2 at the root below.
-double shiftWithin(const LaneBody& a, const LaneBody& b, double k, double armA, double armB) {
-  const double sum = a.invInertia + b.invInertia;
-  if (!(sum > 0.0)) return std::numeric_limits<float>::max();
-  const double lever = a.invInertia * std::abs(armA) + b.invInertia * std::abs(armB);
-  return (std::sqrt(lever * lever + 0.5 * sum * k) - lever) / sum;
 }
 
 // What restitution reads of a lane that does not bounce.
@@ -104,15 +91,17 @@ void setEmptyLane(ContactBundle& c, BundleExtra& e, int lane, int32_t identityOf
   c.laneFlags[lane] = 0;
   e.k[0][lane] = e.k[1][lane] = 0.0;
   for (int i = 0; i < 2; ++i) {
-    setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0);
+    c.normalMass[i][lane] = c.tangentMass[i][lane] = 0.0f;
     e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
   }
   clearRestitution(e, lane);
 }
 
-// One contact's lane, as the step begins.
+// One contact's lane, as the step begins: what the contact and its bodies give. The masses,
+// which follow from the lane alone, are prepareBundleMasses' (finishFill).
 void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact, const LaneBody& a,
-              const LaneBody& b, int substeps, bool soft) {
+              const LaneBody& b, int substeps) {
   const Manifold& m = contact.manifold;
   c.offsetA[lane] = a.offset;
   c.offsetB[lane] = b.offset;
@@ -125,35 +114,24 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
   c.friction[lane] = static_cast<float>(contact.friction);
   const bool bounces = contact.restitution > 0.0;
   uint8_t flags = a.invMass > 0.0 && b.invMass > 0.0 ? 0 : kAgainstStaticLane;
+  if (m.pointCount > 1) flags |= kTwoPointLane;
   if (bounces) {
     flags |= kRestitutionLane;
     e.restitution[lane] = contact.restitution;
   }
-  const double nx = m.normal.x(), ny = m.normal.y();  // tangent t = perp(n) = (-ny, nx)
-  const double mass = a.invMass + b.invMass;
-  double normalArmA[2] = {0.0, 0.0}, normalArmB[2] = {0.0, 0.0};
-  double maxShift = std::numeric_limits<float>::max();
+  c.laneFlags[lane] = flags;
+  const double nx = m.normal.x(), ny = m.normal.y();
   for (int i = 0; i < 2; ++i) {
     e.totalNormalImpulse[i][lane] = e.totalTangentImpulse[i][lane] = 0.0;
     if (bounces) e.maxNormalImpulse[i][lane] = e.approach[i][lane] = 0.0;
     if (i >= m.pointCount) {
-      setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+      setPoint(c, i, lane, 0, 0, 0, 0, 0, 0, 0);
       continue;
     }
     const ManifoldPoint& mp = m.points[i];
     const double px = mp.point.x(), py = mp.point.y();
     const double aAx = px - a.cx, aAy = py - a.cy, aBx = px - b.cx, aBy = py - b.cy;
-    normalArmA[i] = aAx * ny - aAy * nx;
-    normalArmB[i] = aBx * ny - aBy * nx;
-    const double tangentArmA = aAx * nx + aAy * ny, tangentArmB = aBx * nx + aBy * ny;
-    const double normalK = mass + a.invInertia * normalArmA[i] * normalArmA[i] +
-                           b.invInertia * normalArmB[i] * normalArmB[i];
-    const double tangentK =
-        mass + a.invInertia * tangentArmA * tangentArmA + b.invInertia * tangentArmB * tangentArmB;
-    maxShift = std::min({maxShift, shiftWithin(a, b, normalK, normalArmA[i], normalArmB[i]),
-                         shiftWithin(a, b, tangentK, tangentArmA, tangentArmB)});
     setPoint(c, i, lane, aAx, aAy, aBx, aBy, mp.separation - (nx * (aBx - aAx) + ny * (aBy - aAy)),
-             normalK > 0.0 ? 1.0 / normalK : 0.0, tangentK > 0.0 ? 1.0 / tangentK : 0.0,
              contact.normalImpulse[i] / substeps, contact.tangentImpulse[i] / substeps);
     // Normal speed of B relative to A at the point: v + w x r of each.
     if (bounces) {
@@ -161,32 +139,6 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
       const double relativeY = (b.vy + b.w * aBx) - (a.vy + a.w * aAx);
       e.approach[i][lane] = relativeX * nx + relativeY * ny;
     }
-  }
-  c.maxShift[lane] = static_cast<float>(maxShift);
-  const double k11 = mass + a.invInertia * normalArmA[0] * normalArmA[0] +
-                     b.invInertia * normalArmB[0] * normalArmB[0];
-  if (soft) {
-    e.k[0][lane] = k11;
-    e.k[1][lane] = 0.0;
-  }
-  c.k12[lane] = c.inverse12[lane] = c.inverse22[lane] = 0.0;
-  c.inverse11[lane] = c.normalMass[0][lane];
-  c.laneFlags[lane] = flags;
-  if (m.pointCount < 2) return;
-  const double k22 = mass + a.invInertia * normalArmA[1] * normalArmA[1] +
-                     b.invInertia * normalArmB[1] * normalArmB[1];
-  const double k12 = mass + a.invInertia * normalArmA[0] * normalArmA[1] +
-                     b.invInertia * normalArmB[0] * normalArmB[1];
-  if (soft) e.k[1][lane] = k22;
-  c.k12[lane] = static_cast<float>(k12);
-  if (wellConditioned(k11, k12, k22)) {
-    const double det = k11 * k22 - k12 * k12;
-    c.inverse11[lane] = static_cast<float>(k22 / det);
-    c.inverse12[lane] = static_cast<float>(-k12 / det);
-    c.inverse22[lane] = static_cast<float>(k11 / det);
-  } else {
-    c.inverse11[lane] = 0.0;
-    c.laneFlags[lane] = flags | kSequentialLane;
   }
 }
 
@@ -272,24 +224,27 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
 }
 
 void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
-                          const SubstepBodies& bodies, const std::vector<Body>& items, int substeps,
-                          bool soft) {
+                          const SubstepBodies& bodies, const std::vector<Body>& items,
+                          int substeps) {
   for (size_t i = first; i < last; ++i) {
     if (laneOf_[i] < 0) continue;
     const Contact& contact = contacts[i];
     const int k = laneOf_[i] / kBundleLanes, lane = laneOf_[i] % kBundleLanes;
     fillLane(bundles_[k], extras_[k], lane, contact, laneBody(bodies, items, contact.bodyA),
-             laneBody(bodies, items, contact.bodyB), substeps, soft);
+             laneBody(bodies, items, contact.bodyB), substeps);
   }
 }
 
-void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies) {
+void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies, bool soft) {
   const int32_t identityOffset = static_cast<int32_t>(bodies.identityRow() * kStateDoubles);
+  for (int k = begin; k < end; ++k) {
+    for (int lane = bundles_[k].laneCount; lane < kBundleLanes; ++lane)
+      setEmptyLane(bundles_[k], extras_[k], lane, identityOffset);
+  }
+  prepareBundleMasses(bundles_.data(), extras_.data(), begin, end, soft);
   for (int k = begin; k < end; ++k) {
     ContactBundle& c = bundles_[k];
     BundleExtra& e = extras_[k];
-    for (int lane = c.laneCount; lane < kBundleLanes; ++lane)
-      setEmptyLane(c, e, lane, identityOffset);
     uint8_t any = 0;
     for (int lane = 0; lane < c.laneCount; ++lane) any |= c.laneFlags[lane];
     c.anySequential = (any & kSequentialLane) != 0;

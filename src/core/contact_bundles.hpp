@@ -35,8 +35,13 @@ constexpr int kBundleLanes = 8;
 
 // ContactBundle::laneFlags: a two-point lane too ill-conditioned for the block (its points are
 // solved in turn); a lane that may bounce; one whose other body cannot move (the soft step's
-// spring is stiffer there).
-enum : uint8_t { kSequentialLane = 1, kRestitutionLane = 2, kAgainstStaticLane = 4 };
+// spring is stiffer there); a lane of two points.
+enum : uint8_t {
+  kSequentialLane = 1,
+  kRestitutionLane = 2,
+  kAgainstStaticLane = 4,
+  kTwoPointLane = 8
+};
 
 struct BundlePoint {
   double anchorAx[kBundleLanes], anchorAy[kBundleLanes];             // m, from A's centre of mass
@@ -49,7 +54,7 @@ struct BundlePoint {
 // same impulse at the same point), so they are kept as floats: the sweeps stream these bundles
 // from memory, and a smaller bundle is a faster sweep.
 struct ContactBundle {
-  ContactBundle() {}  // fill() writes every field of every lane: no zeroing first
+  ContactBundle() {}  // fill() and finishFill() write every field of every lane: no zeroing
   // BodyState offsets (row * kStateDoubles) of each lane's bodies; a lane that must not write
   // its body back (static, kinematic, an empty lane) holds ~offset.
   alignas(64) int32_t offsetA[kBundleLanes];
@@ -113,12 +118,13 @@ class ContactBundles {
   void assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
               const std::vector<std::pair<int, int>>& jointBodies, const SubstepBodies& bodies);
   /// Fills the lanes of the contacts [first, last) as the step begins, reading the contacts in
-  /// order; impulses are the arbiters' whole-step ones divided among `substeps`.
+  /// order; impulses are the arbiters' whole-step ones divided among `substeps`. What follows
+  /// from the lane alone (masses, block, shift) is left to finishFill.
   void fill(std::vector<Contact>& contacts, size_t first, size_t last, const SubstepBodies& bodies,
-            const std::vector<Body>& items, int substeps, bool soft);
-  /// After fill(): the lanes no contact took, and each bundle's summary flags, of the bundles
-  /// [begin, end).
-  void finishFill(int begin, int end, const SubstepBodies& bodies);
+            const std::vector<Body>& items, int substeps);
+  /// After fill(), for the bundles [begin, end): the lanes no contact took, then the masses of
+  /// every lane (SIMD, prepareBundleMasses), then each bundle's summary flags.
+  void finishFill(int begin, int end, const SubstepBodies& bodies, bool soft);
   /// Writes the step's summed impulses of the contacts [first, last) back into them.
   void store(std::vector<Contact>& contacts, size_t first, size_t last) const;
 
@@ -160,6 +166,9 @@ void solveBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
 void restituteBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
 /// One non-linear Gauss-Seidel pass on positions; returns the deepest separation measured.
 double solveBundlePositions(const BundlePass& pass, int begin, int end, bool oneByOne);
+/// Each lane's masses, block and largest shift (ContactBundles::finishFill).
+void prepareBundleMasses(ContactBundle* bundles, BundleExtra* extras, int begin, int end,
+                         bool soft);
 /// The name of the instruction set the kernels run on ("AVX3", "AVX2", "SSE4", "EMU128").
 const char* contactKernelTarget();
 /// The instruction sets this processor can run the kernels on, best first.

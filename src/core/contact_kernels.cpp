@@ -15,11 +15,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "body_lanes-inl.h"
 #include "contact_bundles.hpp"
+#include "contact_math.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace impulse2d {
@@ -527,6 +529,83 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
   return deepest;
 }
 
+// A lane group's masses, as the step begins (fill leaves them to this, contact_bundles.cpp): each
+// point's normal and tangent effective masses, the two-point block and its inverse, the lever
+// arms' largest shift (shiftWithin there), the soft step's diagonal. The same operations in the
+// same order as a lane at a time; lanes past the bundle's count stay empty (all zero).
+template <class D>
+HWY_INLINE void massGroup(D d, ContactBundle& c, BundleExtra& e, size_t lane, bool soft) {
+  const V<D> zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const V<D> unbounded = hn::Set(d, static_cast<double>(std::numeric_limits<float>::max()));
+  const V<D> nx = hn::Load(d, c.normalX + lane), ny = hn::Load(d, c.normalY + lane);
+  const V<D> iA = hn::Load(d, c.invInertiaA + lane), iB = hn::Load(d, c.invInertiaB + lane);
+  const V<D> mass = hn::Add(hn::Load(d, c.invMassA + lane), hn::Load(d, c.invMassB + lane));
+  const V<D> inertiaSum = hn::Add(iA, iB);
+  const auto turns = hn::Gt(inertiaSum, zero);
+  const auto two = laneMask(d, c.laneFlags + lane, kTwoPointLane);
+  const int count = c.laneCount;
+  const auto used =
+      hn::FirstN(d, count > static_cast<int>(lane) ? static_cast<size_t>(count) - lane : 0);
+  // The largest |h| with K <= 1.5 k when the arms become armA + h and armB - h.
+  auto shiftWithin = [&](V<D> k, V<D> armA, V<D> armB) {
+    const V<D> lever = hn::Add(hn::Mul(iA, hn::Abs(armA)), hn::Mul(iB, hn::Abs(armB)));
+    const V<D> root =
+        hn::Sqrt(hn::Add(hn::Mul(lever, lever), hn::Mul(hn::Mul(half, inertiaSum), k)));
+    return hn::IfThenElse(turns, hn::Div(hn::Sub(root, lever), inertiaSum), unbounded);
+  };
+  const hn::Rebind<float, D> df;
+  V<D> normalArmA[2], normalArmB[2], normalK[2], maxShift = unbounded;
+  for (int i = 0; i < 2; ++i) {
+    const BundlePoint& p = c.points[i];
+    const V<D> ax = hn::Load(d, p.anchorAx + lane), ay = hn::Load(d, p.anchorAy + lane);
+    const V<D> bx = hn::Load(d, p.anchorBx + lane), by = hn::Load(d, p.anchorBy + lane);
+    normalArmA[i] = hn::Sub(hn::Mul(ax, ny), hn::Mul(ay, nx));
+    normalArmB[i] = hn::Sub(hn::Mul(bx, ny), hn::Mul(by, nx));
+    const V<D> tangentArmA = hn::Add(hn::Mul(ax, nx), hn::Mul(ay, ny));
+    const V<D> tangentArmB = hn::Add(hn::Mul(bx, nx), hn::Mul(by, ny));
+    normalK[i] = hn::Add(hn::Add(mass, hn::Mul(hn::Mul(iA, normalArmA[i]), normalArmA[i])),
+                         hn::Mul(hn::Mul(iB, normalArmB[i]), normalArmB[i]));
+    const V<D> tangentK = hn::Add(hn::Add(mass, hn::Mul(hn::Mul(iA, tangentArmA), tangentArmA)),
+                                  hn::Mul(hn::Mul(iB, tangentArmB), tangentArmB));
+    const V<D> shift = hn::Min(shiftWithin(normalK[i], normalArmA[i], normalArmB[i]),
+                               shiftWithin(tangentK, tangentArmA, tangentArmB));
+    const auto present = i == 0 ? used : hn::And(used, two);
+    maxShift = hn::IfThenElse(present, hn::Min(maxShift, shift), maxShift);
+    const V<D> normalMass =
+        hn::IfThenElseZero(hn::And(present, hn::Gt(normalK[i], zero)), hn::Div(one, normalK[i]));
+    const V<D> tangentMass =
+        hn::IfThenElseZero(hn::And(present, hn::Gt(tangentK, zero)), hn::Div(one, tangentK));
+    hn::Store(hn::DemoteTo(df, normalMass), df, c.normalMass[i] + lane);
+    hn::Store(hn::DemoteTo(df, tangentMass), df, c.tangentMass[i] + lane);
+  }
+  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(used, maxShift)), df, c.maxShift + lane);
+  const V<D> k11 = normalK[0], k22 = hn::IfThenElseZero(two, normalK[1]);
+  const V<D> k12 = hn::IfThenElseZero(
+      two, hn::Add(hn::Add(mass, hn::Mul(hn::Mul(iA, normalArmA[0]), normalArmA[1])),
+                   hn::Mul(hn::Mul(iB, normalArmB[0]), normalArmB[1])));
+  if (soft) {
+    hn::Store(k11, d, e.k[0] + lane);
+    hn::Store(k22, d, e.k[1] + lane);
+  }
+  const V<D> det = hn::Sub(hn::Mul(k11, k22), hn::Mul(k12, k12));
+  const auto block =
+      hn::And(two, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, kMaxBlockCondition), det)));
+  const auto sequential = hn::AndNot(block, two);
+  const V<D> single = hn::IfThenElseZero(hn::And(used, hn::Gt(k11, zero)), hn::Div(one, k11));
+  const V<D> inverse11 =
+      hn::IfThenElse(block, hn::Div(k22, det), hn::IfThenElseZero(hn::Not(two), single));
+  hn::Store(hn::DemoteTo(df, k12), df, c.k12 + lane);
+  hn::Store(hn::DemoteTo(df, inverse11), df, c.inverse11 + lane);
+  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(block, hn::Div(hn::Neg(k12), det))), df,
+            c.inverse12 + lane);
+  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(block, hn::Div(k11, det))), df, c.inverse22 + lane);
+  HWY_ALIGN double flags[kBundleLanes];
+  hn::Store(hn::IfThenElseZero(sequential, one), d, flags);
+  for (size_t i = 0; i < hn::Lanes(d) && static_cast<int>(lane + i) < count; ++i) {
+    if (flags[i] != 0.0) c.laneFlags[lane + i] |= kSequentialLane;
+  }
+}
+
 // Runs `group` over the lane groups of the bundles [begin, end): as many lanes at once as the
 // instruction set holds, or one at a time for the overflow, whose lanes may share bodies.
 template <class Group>
@@ -574,6 +653,15 @@ double SolveBundlePositions(const BundlePass& pass, int begin, int end, bool one
   return deepest;
 }
 
+void PrepareBundleMasses(ContactBundle* bundles, BundleExtra* extras, int begin, int end,
+                         bool soft) {
+  const hn::CappedTag<double, kBundleLanes> d;
+  for (int k = begin; k < end; ++k) {
+    for (size_t lane = 0; lane < static_cast<size_t>(bundles[k].laneCount); lane += hn::Lanes(d))
+      massGroup(d, bundles[k], extras[k], lane, soft);
+  }
+}
+
 const char* KernelTarget() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -587,6 +675,7 @@ HWY_EXPORT(WarmStartBundles);
 HWY_EXPORT(SolveBundles);
 HWY_EXPORT(RestituteBundles);
 HWY_EXPORT(SolveBundlePositions);
+HWY_EXPORT(PrepareBundleMasses);
 HWY_EXPORT(KernelTarget);
 
 void warmStartBundles(const BundlePass& pass, int begin, int end, bool oneByOne) {
@@ -600,6 +689,10 @@ void restituteBundles(const BundlePass& pass, int begin, int end, bool oneByOne)
 }
 double solveBundlePositions(const BundlePass& pass, int begin, int end, bool oneByOne) {
   return HWY_DYNAMIC_DISPATCH(SolveBundlePositions)(pass, begin, end, oneByOne);
+}
+void prepareBundleMasses(ContactBundle* bundles, BundleExtra* extras, int begin, int end,
+                         bool soft) {
+  HWY_DYNAMIC_DISPATCH(PrepareBundleMasses)(bundles, extras, begin, end, soft);
 }
 const char* contactKernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTarget)(); }
 

@@ -175,13 +175,13 @@ void WorldImpl::solveSubsteps(double dt) {
   stepWorkers.stage(contactBlocks, [&](int block, int) {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
     contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
-                        bodies.items, substeps, soft);
+                        bodies.items, substeps);
   });
   const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
   stepWorkers.stage(fillBlocks, [&](int block, int) {
     const int begin = block * 8 * kBundlesPerBlock;
     contactBundles.finishFill(
-        begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb);
+        begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb, soft);
   });
   for (int substep = 0; substep < substeps; ++substep) {
     stepWorkers.stage(dynamicBlocks, [&](int block, int) {
