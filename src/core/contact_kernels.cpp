@@ -28,9 +28,6 @@ namespace impulse2d {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Below this turn a sub-step's rotation is a Taylor series (solver_body.hpp: rotationBy).
-constexpr double kSmallTurn = 0.02;
-
 // 1.0 in the lanes whose flags have `bit`, 0 elsewhere, as a mask (the rare lanes: a soft step,
 // a degenerate pair).
 template <class D>

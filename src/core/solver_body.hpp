@@ -56,11 +56,13 @@ inline SolverBody solverView(const Body& body) {
   return e;
 }
 
+constexpr double kSmallTurn = 0.02;  // rad: below it rotationBy takes the series
+
 /// The rotation by a small angle without calling sin and cos: their Taylor series to the seventh
 /// power, whose next terms stay below round-off up to 0.02 rad (a sub-step of a body turning at
 /// 10 rad/s); larger turns call them.
 inline Rot rotationBy(double angle) {
-  if (!(std::abs(angle) < 0.02)) return Rot(angle);
+  if (!(std::abs(angle) < kSmallTurn)) return Rot(angle);
   const double a2 = angle * angle;
   Rot r;
   r.c = 1.0 - a2 * (1.0 / 2.0 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0)));

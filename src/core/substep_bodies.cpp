@@ -166,23 +166,43 @@ void SubstepBodies::integrateVelocities(int begin, int end) {
 }
 
 void SubstepBodies::integratePositions(int begin, int end, double h) {
-  for (int e = begin; e < end; ++e) {
-    BodyState& s = states_[e];
-    if (e >= dynamicCount_) {  // impulses cannot change a kinematic velocity, nor may a NaN
-      const BodyStart& start = starts_[e];
-      s.vx = start.kinematicVelocity.x();
-      s.vy = start.kinematicVelocity.y();
-      s.w = start.kinematicAngularVelocity;
-    } else {
-      limits_.apply(s.vx, s.vy, s.w);
+  // In chunks, the turns' rotations in a loop of their own: rotationBy's series is a long chain
+  // of dependent operations, and a loop of nothing else lets the processor run the chunk's
+  // bodies side by side (this stage took 8.5 % of the 5050-box pyramid's step as one loop).
+  // The same operations in the same order as rotationBy, so the same results.
+  constexpr int kChunk = 16;
+  double turn[kChunk], turnC[kChunk], turnS[kChunk];
+  for (int first = begin; first < end; first += kChunk) {
+    const int n = std::min(kChunk, end - first);
+    for (int i = 0; i < n; ++i) {
+      const int e = first + i;
+      BodyState& s = states_[e];
+      if (e >= dynamicCount_) {  // impulses cannot change a kinematic velocity, nor may a NaN
+        const BodyStart& start = starts_[e];
+        s.vx = start.kinematicVelocity.x();
+        s.vy = start.kinematicVelocity.y();
+        s.w = start.kinematicAngularVelocity;
+      } else {
+        limits_.apply(s.vx, s.vy, s.w);
+      }
+      s.dx += h * s.vx;
+      s.dy += h * s.vy;
+      turn[i] = h * s.w;
+      s.turned += turn[i];
     }
-    s.dx += h * s.vx;
-    s.dy += h * s.vy;
-    const double turn = h * s.w;
-    s.turned += turn;
-    const Rot q = Rot::fromCosSin(s.qc, s.qs) * rotationBy(turn);
-    s.qc = q.c;
-    s.qs = q.s;
+    for (int i = 0; i < n; ++i) {
+      const double a2 = turn[i] * turn[i];
+      turnC[i] = 1.0 - a2 * (1.0 / 2.0 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0)));
+      turnS[i] = turn[i] * (1.0 - a2 * (1.0 / 6.0 - a2 * (1.0 / 120.0 - a2 * (1.0 / 5040.0))));
+    }
+    for (int i = 0; i < n; ++i) {
+      BodyState& s = states_[first + i];
+      const Rot r = std::abs(turn[i]) < kSmallTurn ? Rot::fromCosSin(turnC[i], turnS[i])
+                                                   : rotationBy(turn[i]);
+      const Rot q = Rot::fromCosSin(s.qc, s.qs) * r;
+      s.qc = q.c;
+      s.qs = q.s;
+    }
   }
 }
 
