@@ -3,6 +3,7 @@
 
 #include <impulse2d/body.hpp>
 #include <impulse2d/defs.hpp>
+#include <impulse2d/profile.hpp>
 #include <impulse2d/queries.hpp>
 
 #include <cstdint>
@@ -129,6 +130,11 @@ class World {
   void step();
   double time() const;
   uint64_t stepCount() const;
+  /// Times each stage of every step from now on (off: no clock is read; the default).
+  void setProfiling(bool on);
+  bool profiling() const;
+  /// The stages' times of the last step taken with profiling on (all 0 before one).
+  const StepProfile& profile() const;
 
   /// Touching contact points of the last step (speculative points that never touched are left
   /// out), ordered deterministically.

@@ -53,6 +53,7 @@ double turnIntoContact(const Shape& shape, const Sweep& sweep, const Shape& othe
 }  // namespace
 
 void WorldImpl::solveContinuous() {
+  const StageClock clock(stage(&StepProfile::continuous));
   for (const FastBody& fast : fastBodies) {
     Body& body = bodies.items[fast.slot];
     Sweep sweep;

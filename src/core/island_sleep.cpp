@@ -20,6 +20,7 @@ bool isTouching(const Contact& contact) {
 }  // namespace
 
 void WorldImpl::updateSleep(double dt) {
+  const StageClock clock(stage(&StepProfile::sleep));
   const int slotCount = static_cast<int>(bodies.items.size());
   if (!def.enableSleep) {
     // Nothing may sleep, so no islands are needed. Bodies put to sleep before sleeping was

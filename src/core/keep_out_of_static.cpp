@@ -60,6 +60,7 @@ void moveOut(std::vector<Body>& bodies, const int* begin, const int* end, const 
 }  // namespace
 
 void WorldImpl::keepOutOfStatic() {
+  const StageClock clock(stage(&StepProfile::continuous));
   // The deep ones first, by body (in slot order, then contact order: deterministic).
   std::vector<DeepStatic>& deep = deepStatic;
   deep.clear();

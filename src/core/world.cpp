@@ -475,6 +475,9 @@ bool World::setJointMotor(JointId id, bool enable, double speed, double maxForce
 
 double World::time() const { return impl_->time; }
 uint64_t World::stepCount() const { return impl_->steps; }
+void World::setProfiling(bool on) { impl_->profiling = on; }
+bool World::profiling() const { return impl_->profiling; }
+const StepProfile& World::profile() const { return impl_->profile; }
 
 namespace {
 bool touching(const Contact& contact, int point, double linearSlop) {

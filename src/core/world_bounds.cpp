@@ -174,6 +174,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
 }
 
 void World::removeEscapedBodies() {
+  const StageClock clock(impl_->stage(&StepProfile::sleep));
   WorldImpl& w = *impl_;
   auto remove = [&w, this](RemovedBody report) {
     const BodyId id = report.id;

@@ -8,6 +8,7 @@
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
 #include "solver_body.hpp"
+#include "stage_clock.hpp"
 #include "step_workers.hpp"
 #include "substep_bodies.hpp"
 #include "warm_start_guard.hpp"
@@ -82,6 +83,11 @@ inline bool isMoving(const Body& body) {
 
 struct WorldImpl {
   WorldDef def;
+  bool profiling = false;
+  StepProfile profile;  // the last profiled step's (World::profile)
+  /// Where a stage's clock adds its time: a field of `profile`, or null while profiling is off.
+  double* stage(double StepProfile::*field) { return profiling ? &(profile.*field) : nullptr; }
+  StepProfile* profiled() { return profiling ? &profile : nullptr; }
   Slots<Body> bodies;
   Slots<Joint> joints;
   std::vector<JointDef> jointDefs;  // by joint slot: as created (names), for World::jointDef
@@ -168,6 +174,8 @@ struct WorldImpl {
   void wakeBody(Body& body);
 
   // The step pipeline (world_step.cpp).
+  void gatherSolverBodies();  // one-pass solvers: welded clusters found, bodies copied
+  void storeMotion();         // one-pass solvers: the solved motion written back
   void updateBroadPhase();
   void findNewContacts();
   void updateContacts();

@@ -14,6 +14,8 @@ namespace impulse2d {
 void World::step() {
   WorldImpl& w = *impl_;
   const double dt = w.def.timeStep;
+  if (w.profiling) w.profile = StepProfile();
+  const StageClock wholeStep(w.stage(&StepProfile::total));
   w.stepWorkers.setThreads(w.def.threads);
   w.stepWorkers.session([&] {  // the step's threads, for each stage that has parallel blocks
     w.updateBroadPhase();      // 1. refit the fat boxes of bodies that left them
@@ -22,13 +24,12 @@ void World::step() {
     if (usesSubsteps(w.def.solver)) {
       w.solveSubsteps(dt);  // 4-7 in sub-steps (world_substeps.cpp)
     } else {
-      w.weldClusters.find(w.bodies.items, w.bodies.alive, w.joints.items, w.joints.alive);
-      w.solverBodies.gather(w.bodies.items, w.bodies.alive, w.weldClusters);  // 4-7 on a copy
+      w.gatherSolverBodies();     // 4-7 on a copy, each welded cluster one body
       w.integrateVelocities(dt);  // 4. gravity, applied forces, damping
       w.solve(dt);                // 5. pre-step, warm start, velocity iterations, restitution
       w.integratePositions(dt);   // 6. move with the solved velocities
       w.correctPositions();       // 7. ngs: push remaining overlaps and joint gaps apart
-      w.solverBodies.storeMotion(w.bodies.items);
+      w.storeMotion();
       w.findOnePassFastBodies();
     }
     w.solveContinuous();    // 8. fast bodies stop at their first impact instead of tunnelling
@@ -57,6 +58,7 @@ bool movedLessThanMargin(const Body& body) {
 }  // namespace
 
 void WorldImpl::updateBroadPhase() {
+  const StageClock clock(stage(&StepProfile::broadPhase));
   // In parallel: the shapes of moving bodies that left their fat boxes (most move less than the
   // margin and need nothing). Then in slot order, one thread: the tree moves them.
   const int slots = static_cast<int>(bodies.items.size());
@@ -86,6 +88,7 @@ void WorldImpl::updateBroadPhase() {
 }
 
 void WorldImpl::findNewContacts() {
+  const StageClock clock(stage(&StepProfile::broadPhase));
   std::vector<std::pair<int, int>>& pairs = newPairs;  // reused: no allocation once warm
   pairs.clear();
   for (const int proxy : movedProxies) {
@@ -133,6 +136,7 @@ void WorldImpl::findNewContacts() {
 }
 
 void WorldImpl::updateContacts() {
+  const StageClock clock(stage(&StepProfile::narrowPhase));
   // In parallel: each contact's new manifold, or its mark to go (its fat boxes parted). Which
   // bodies move is read as the step found them, so the result does not depend on the order.
   enum : uint8_t { kKeep = 0, kDrop = 1, kWakeA = 2, kWakeB = 4 };
@@ -183,6 +187,7 @@ void WorldImpl::updateContacts() {
 }
 
 void WorldImpl::integrateVelocities(double dt) {
+  const StageClock clock(stage(&StepProfile::integrate));
   const MotionLimits limits = MotionLimits::of(def, dt);
   for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
     SolverBody& body = solverBodies[e];
@@ -249,6 +254,7 @@ void WorldImpl::solveJointVelocities(double dt) {
 }
 
 void WorldImpl::solve(double dt) {
+  StageLaps laps(profiled());
   collectActiveJoints();
   Feedback fb;  // NGS: no bias, its position pass corrects the drift
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
@@ -264,20 +270,36 @@ void WorldImpl::solve(double dt) {
       },
       [&](int slot) { return solverBodies.view(slot); }, def.gravity.norm() * dt);
   contactSolver.prepare(contacts, solverBodies, def, dt);
+  laps.lap(&StepProfile::prepare);
 
   // Warm start: apply last step's impulses first, so the iterations only refine them.
   warmStartJoints();
   contactSolver.warmStart();
+  laps.lap(&StepProfile::warmStart);
 
   for (int iteration = 0; iteration < def.velocityIterations; ++iteration) {
     solveJointVelocities(dt);
     contactSolver.solveVelocities();
   }
+  laps.lap(&StepProfile::solve);
   contactSolver.applyRestitution(def.restitutionThreshold);
   contactSolver.storeImpulses();
+  laps.lap(&StepProfile::restitution);
+}
+
+void WorldImpl::gatherSolverBodies() {
+  const StageClock clock(stage(&StepProfile::prepare));
+  weldClusters.find(bodies.items, bodies.alive, joints.items, joints.alive);
+  solverBodies.gather(bodies.items, bodies.alive, weldClusters);
+}
+
+void WorldImpl::storeMotion() {
+  const StageClock clock(stage(&StepProfile::integrate));
+  solverBodies.storeMotion(bodies.items);
 }
 
 void WorldImpl::integratePositions(double dt) {
+  const StageClock clock(stage(&StepProfile::integrate));
   solverBodies.holdKinematicVelocities();
   const MotionLimits limits = MotionLimits::of(def, dt);
   onePassStarts.resize(static_cast<size_t>(solverBodies.dynamicCount()));
@@ -301,6 +323,7 @@ bool WorldImpl::isFast(const Body& body, const Vec2& move, double turn, double a
 }
 
 void WorldImpl::findOnePassFastBodies() {
+  const StageClock clock(stage(&StepProfile::continuous));
   fastBodies.clear();
   fastClusters.clear();
   for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
@@ -332,6 +355,7 @@ void WorldImpl::findOnePassFastBodies() {
 }
 
 void WorldImpl::correctPositions() {
+  const StageClock clock(stage(&StepProfile::positions));
   if (def.solver != SolverType::NonlinearGaussSeidel) return;
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     bool jointsOk = true;

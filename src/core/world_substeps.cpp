@@ -94,10 +94,12 @@ void WorldImpl::solveSubsteps(double dt) {
   const double h = dt / substeps;
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
+  StageLaps laps(profiled());
   weldClusters.find(bodies.items, bodies.alive, joints.items, joints.alive);
   sb.gather(bodies.items, bodies.alive, def.gravity, h, MotionLimits::of(def, h), weldClusters,
             stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
+  laps.lap(&StepProfile::prepare);
 
   activeJoints.clear();
   activeJointBodies.clear();
@@ -115,6 +117,7 @@ void WorldImpl::solveSubsteps(double dt) {
     }
   }
   contactBundles.assign(contacts, activeJoints, activeJointBodies, sb);
+  laps.lap(&StepProfile::coloring);
   // The joints, colour after colour and the overflow last, copied side by side: a colour's
   // joints are every few in slot order, and a pass over them there waited on memory at each.
   solverJoints.clear();
@@ -188,19 +191,24 @@ void WorldImpl::solveSubsteps(double dt) {
     contactBundles.finishFill(
         begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb, soft);
   });
+  laps.lap(&StepProfile::prepare);
   for (substep = 0; substep < substeps; ++substep) {
     stepWorkers.stage(dynamicBlocks, [&](int block, int) {
       sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
     });
+    laps.lap(&StepProfile::integrate);
     overColors(prepareAndWarmStart, kernel(warmStartBundles), pass, false);
+    laps.lap(&StepProfile::warmStart);
     pass.useBias = soft;
     pass.relax = false;
     overColors(solveJoints, kernel(solveBundles), pass, false);
+    laps.lap(&StepProfile::solve);
 
     stepWorkers.stage(bodyBlocks, [&](int block, int) {
       sb.integratePositions(block * kBodiesPerBlock,
                             std::min(sb.movingCount(), (block + 1) * kBodiesPerBlock), h);
     });
+    laps.lap(&StepProfile::integrate);
 
     // Relax: a second iteration at the new poses. For the soft step it takes back the push;
     // for both it is what keeps warm-started sub-steps stable (with one iteration per sub-step
@@ -208,6 +216,7 @@ void WorldImpl::solveSubsteps(double dt) {
     pass.useBias = false;
     pass.relax = true;
     overColors(prepareAndRelax, kernel(solveBundles), pass, false);
+    laps.lap(&StepProfile::relax);
   }
   pass.relax = false;
   overColors(nullptr, kernel(restituteBundles), pass, false);
@@ -215,11 +224,14 @@ void WorldImpl::solveSubsteps(double dt) {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
     contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
   });
+  laps.lap(&StepProfile::restitution);
   if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
+  laps.lap(&StepProfile::positions);
   for (const Joint& joint : solverJoints) joints.items[joint.id.index] = joint;
   stepWorkers.stage(bodyBlocks, [&](int block, int) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
   });
+  laps.lap(&StepProfile::integrate);
 
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.
   fastBodies.clear();
@@ -248,6 +260,7 @@ void WorldImpl::solveSubsteps(double dt) {
       fastBodies.push_back({m.slot, sb.sim(e).center0 + m.offset, m.angle0, cluster});
     }
   }
+  laps.lap(&StepProfile::continuous);
 }
 
 // NGS passes after the sub-steps: push what still overlaps apart by moving the bodies (no

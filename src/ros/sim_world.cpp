@@ -326,6 +326,8 @@ bool SimWorld::getBodyProperties(const std::string& name, BodyProperties* out,
   return true;
 }
 
+const StepProfile& SimWorld::lastProfile() const { return world_->profile(); }
+
 void SimWorld::step() {
   for (Wrench& w : wrenches_) {
     if (!world_->isValid(w.body)) {
@@ -341,6 +343,7 @@ void SimWorld::step() {
                                  [](const Wrench& w) { return w.stepsLeft == 0; }),
                   wrenches_.end());
   devices_->beforeStep(*world_, 1e-9 * static_cast<double>(simTimeNs_));  // after the wrenches
+  world_->setProfiling(true);  // /diagnostics reports the stages (a few clock reads a step)
   world_->step();
   ++steps_;
   simTimeNs_ += static_cast<int64_t>(std::llround(timeStep() * 1e9));

@@ -9,6 +9,7 @@
 
 #include <impulse2d/defs.hpp>
 #include <impulse2d/device_defs.hpp>
+#include <impulse2d/profile.hpp>
 
 #include <Eigen/Geometry>
 
@@ -253,6 +254,8 @@ class SimWorld {
 
   /// One fixed step, with the wrenches that are due and the devices.
   void step();
+  /// Each stage's time of the last step (World::profile).
+  const StepProfile& lastProfile() const;
   /// The bodies that steps removed, or found lost for good, since the last call, oldest first
   /// (at most 1024 are kept between calls).
   std::vector<BodyLoss> takeBodyLosses();

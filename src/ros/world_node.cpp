@@ -122,8 +122,8 @@ void WorldNode::readParams() {
     if (threads >= 1 && threads <= kMaxThreads) {
       sim_.setThreads(threads);
     } else {
-      ROS_WARN("[%s] ~threads must be in [1, %d]; using the scene's %d", name_.c_str(),
-               kMaxThreads, sim_.threads());
+      ROS_WARN("[%s] ~threads must be in [1, %d]; using the scene's %d", name_.c_str(), kMaxThreads,
+               sim_.threads());
     }
   }
 }
@@ -152,6 +152,7 @@ void WorldNode::stepLocked() {
   publishDeviceReadings();
   statsStepSeconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  statsProfile_ += sim_.lastProfile();
   ++statsSteps_;
 }
 

@@ -137,6 +137,7 @@ class WorldNode {
   int64_t statsSimStartNs_ = 0;
   uint64_t statsSteps_ = 0;
   double statsStepSeconds_ = 0.0;
+  StepProfile statsProfile_;                             // the window's steps' stage times, summed
   uint64_t statsRemovedStart_ = 0, statsLostStart_ = 0;  ///< counts at the window's start
   // What ~removed_bodies sends: the latest removals (RemovedBodies.msg says how many).
   std::deque<impulse2d::RemovedBody> removedBodies_;

@@ -167,6 +167,13 @@ void WorldNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("bodies lost for good", lost);
   status.add("requested rate (steps/s)", rate_);
   status.add("threads", sim_.threads());
+  // Where the steps' time went, as impulse2d_sim --profile prints it: mean ms per step.
+  const double steps = statsSteps_ > 0 ? static_cast<double>(statsSteps_) : 1.0;
+  for (const auto& [stage, ms] : statsProfile_.stages()) {
+    status.add(std::string("stage ms: ") + stage, ms / steps);
+  }
+  status.add("stage ms: step", statsProfile_.total / steps);
+  statsProfile_ = StepProfile();
   statsStart_ = now;
   statsSimStartNs_ = sim_.simTimeNs();
   statsSteps_ = 0;

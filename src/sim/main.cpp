@@ -101,6 +101,17 @@ uint64_t reportLosses(World& world, uint64_t step) {
   return removed.size();
 }
 
+// The stages' mean times, one per line, and the step's; stages that took no time are left out
+// (the solver has none such).
+void printProfile(const StepProfile& sum, uint64_t steps) {
+  const double n = steps > 0 ? static_cast<double>(steps) : 1.0;
+  std::printf("profile (ms per step, mean of %" PRIu64 " steps):\n", steps);
+  for (const auto& [name, ms] : sum.stages()) {
+    if (ms > 0.0) std::printf("  %-13s %9.4f  %5.1f %%\n", name, ms / n, 100.0 * ms / sum.total);
+  }
+  std::printf("  %-13s %9.4f\n", "step", sum.total / n);
+}
+
 int run(const Options& options) {
   Scene scene;
   std::string error;
@@ -134,9 +145,12 @@ int run(const Options& options) {
   Progress progress(steps, start);
   if (bodiesCsv.isOpen()) bodiesCsv.writeBodies(world, 0);
   uint64_t removed = 0;
+  world.setProfiling(options.profile);
+  StepProfile profile;  // summed over the steps
   for (uint64_t k = 1; k <= steps; ++k) {
     devices.beforeStep(world, world.time());
     world.step();
+    if (options.profile) profile += world.profile();
     devices.afterStep(world, world.time());
     removed += reportLosses(world, k);
     if (k % options.every == 0 || k == steps) {
@@ -156,6 +170,7 @@ int run(const Options& options) {
   if (removed > 0) std::printf(", removed: %" PRIu64 " (listed on stderr)", removed);
   std::printf("\n");
   if (options.hash) std::printf("hash: %016" PRIx64 "\n", world.hash());
+  if (options.profile) printProfile(profile, steps);
   if (std::fflush(stdout) != 0) return fail(kExitRunFailed, "cannot write to stdout");
   return 0;
 }

@@ -18,7 +18,7 @@ const char* const kUsage =
     "usage: impulse2d_sim SCENE.yaml [--steps N | --duration SECONDS] [--time-step DT]\n"
     "                     [--velocity-iterations K] [--position-iterations K]\n"
     "                     [--solver baumgarte|ngs|soft|substep] [--threads N] [--csv FILE]\n"
-    "                     [--contacts FILE] [--every K] [--hash]\n"
+    "                     [--contacts FILE] [--every K] [--hash] [--profile]\n"
     "\n"
     "Runs a scene file (the YAML schema of the impulse2d README) headless, without ROS.\n"
     "\n"
@@ -36,6 +36,10 @@ const char* const kUsage =
     "                           tangent_impulse: the contact points of each written step >= 1\n"
     "  --every K                write step 0, every K-th step and the last (default 1)\n"
     "  --hash                   print \"hash: <16 hex digits>\" of the final state's exact bits\n"
+    "  --profile                print each stage's mean wall time per step (ms), as Box2D's\n"
+    "                           b2Profile: broad phase, narrow phase, colouring, prepare, warm\n"
+    "                           start, solve, relax, restitution, positions, integrate,\n"
+    "                           continuous, sleep\n"
     "  -h, --help               print this help\n"
     "\n"
     "Prints one summary line (steps, simulated and wall seconds, bodies, contacts) on stdout.\n"
@@ -171,6 +175,8 @@ bool parseOptions(int argc, const char* const* argv, Options* out, std::string* 
       o.help = true;
     } else if (arg == "--hash") {
       o.hash = true;
+    } else if (arg == "--profile") {
+      o.profile = true;
     } else {
       const size_t eq = arg.find('=');
       const std::string flag = arg.substr(0, eq);

@@ -28,6 +28,7 @@ struct Options {
   std::string contactsPath;  ///< empty: none
   uint64_t every = 1;
   bool hash = false;
+  bool profile = false;  ///< print the stages' mean times
   bool help = false;
 };
 

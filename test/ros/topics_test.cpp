@@ -10,6 +10,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cmath>
+#include <map>
 
 namespace impulse2d_test {
 namespace {
@@ -161,6 +162,35 @@ TEST(Topics, DiagnosticsReportTheRealTimeFactor) {
     return false;
   };
   EXPECT_TRUE(waitFor(reported, 5.0));
+}
+
+// The stage times of impulse2d_sim --profile, means over the window: every stage listed, none
+// negative, together no more than the step, and the step timed.
+TEST(Topics, DiagnosticsReportTheStageTimes) {
+  Latest<diagnostic_msgs::DiagnosticArray> diagnostics("/diagnostics");
+  std::map<std::string, double> stages;
+  auto reported = [&] {
+    auto msg = diagnostics.get();
+    if (!msg) return false;
+    stages.clear();
+    for (const auto& status : msg->status) {
+      for (const auto& kv : status.values) {
+        if (kv.key.rfind("stage ms: ", 0) == 0) stages[kv.key.substr(10)] = std::stod(kv.value);
+      }
+    }
+    return stages.count("step") && stages["step"] > 0.0;
+  };
+  ASSERT_TRUE(waitFor(reported, 5.0));
+  double sum = 0.0;
+  for (const char* name :
+       {"broad phase", "narrow phase", "colouring", "prepare", "warm start", "solve", "relax",
+        "restitution", "positions", "integrate", "continuous", "sleep"}) {
+    ASSERT_TRUE(stages.count(name)) << name;
+    EXPECT_GE(stages[name], 0.0) << name;
+    sum += stages[name];
+  }
+  EXPECT_LE(sum, stages["step"] * 1.001 + 1e-6);
+  EXPECT_GT(stages["solve"], 0.0);
 }
 
 }  // namespace

@@ -299,6 +299,49 @@ TEST(SimCli, HashIsReproducible) {
   EXPECT_EQ(a[1], b[1]);
 }
 
+// --profile lists the stages the solver has, each with a mean time and share, then the step; and
+// timing the stages changes nothing of the result.
+TEST(SimCli, ProfilePrintsEachStageAndChangesNothing) {
+  const SimRun plain = runSim({config("pyramid.yaml"), "--steps", "120", "--hash"});
+  const SimRun timed = runSim({config("pyramid.yaml"), "--steps", "120", "--hash", "--profile"});
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  ASSERT_EQ(timed.exitCode, 0) << timed.err;
+  const std::vector<std::string> a = lines(plain.out), b = lines(timed.out);
+  ASSERT_EQ(a.size(), 2u) << plain.out;
+  ASSERT_GE(b.size(), 4u) << timed.out;
+  EXPECT_EQ(a[1], b[1]);  // the same hash
+  EXPECT_EQ(b[2], "profile (ms per step, mean of 120 steps):");
+  double sum = 0.0, step = -1.0;
+  std::set<std::string> names;
+  for (size_t i = 3; i < b.size(); ++i) {
+    std::istringstream line(b[i]);
+    std::string word, name;
+    double ms = -1.0;
+    // A name may be two words ("broad phase"): read words until a number.
+    while (line >> word) {
+      char* end = nullptr;
+      const double value = std::strtod(word.c_str(), &end);
+      if (end != word.c_str() && *end == '\0') {
+        ms = value;
+        break;
+      }
+      name += (name.empty() ? "" : " ") + word;
+    }
+    ASSERT_GE(ms, 0.0) << b[i];
+    if (name == "step") {
+      step = ms;
+    } else {
+      names.insert(name);
+      sum += ms;
+    }
+  }
+  EXPECT_GT(step, 0.0) << timed.out;
+  EXPECT_LE(sum, step * 1.0001 + 1e-4) << timed.out;  // the stages are parts of the step
+  for (const char* stage : {"broad phase", "narrow phase", "prepare", "solve", "integrate"}) {
+    EXPECT_TRUE(names.count(stage)) << stage << " missing from\n" << timed.out;
+  }
+}
+
 TEST(SimCli, PyramidRunsForTenSimulatedSeconds) {
   const SimRun run = runSim({config("pyramid.yaml"), "--duration", "10", "--hash"});
   ASSERT_EQ(run.exitCode, 0) << run.err;
