@@ -73,7 +73,7 @@ struct ContactBundle {
   alignas(64) int laneCount;
   bool anySequential;  // of the lanes, summed up by finishFill()
   bool anyRestitution;
-  uint8_t laneFlags[kBundleLanes];  // kSequentialLane | kRestitutionLane | kAgainstStaticLane
+  uint8_t laneFlags[kBundleLanes];  // kSequentialLane, kRestitutionLane, ... (above)
   // m, the largest shift of the lever arms (half the relative move along n and along t) for
   // which no row's K grows by more than half: the masses above were computed at the step's start,
   // and a row whose K has doubled would overshoot at every iteration. Bodies that move apart fast
