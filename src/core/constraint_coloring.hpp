@@ -3,12 +3,15 @@
 // the result of solving them one after the other in any order. Static and kinematic bodies do not
 // count: no impulse changes them, and nothing writes them back.
 //
-// First fit, in the order the constraints come (sorted contact keys), so the colouring depends
-// only on which constraints exist, never on threads or timing. Each body keeps a mask of the
-// colours its constraints took; a constraint takes the lowest colour free in both masks:
+// First fit from a start colour, in the order the constraints come (sorted contact keys), so the
+// colouring depends only on which constraints exist, never on threads or timing. Each body keeps
+// a mask of the colours its constraints took; a constraint takes the lowest colour free in both
+// masks at or after its start colour (or, when none is, the lowest free one):
 //
-//   box 7 used 0b0101, box 9 used 0b0011  ->  free: ~(0b0111)  ->  colour 3
+//   box 7 used 0b0101, box 9 used 0b0011  ->  free: ~(0b0111)  ->  start 0: colour 3
 //
+// The caller picks the start (contact_bundles.cpp: by a hash of the contact's key, which keeps
+// Gauss-Seidel from a systematic order; plain first fit is start 0).
 // A body with more constraints than colours sends the rest to the overflow, solved one by one.
 #pragma once
 

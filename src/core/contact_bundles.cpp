@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "constraint_coloring.hpp"
-#include "contact_math.hpp"
 
 namespace impulse2d {
 namespace {
@@ -150,12 +149,12 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
                             const SubstepBodies& bodies) {
   ConstraintColoring coloring;
   coloring.reset(bodies.dynamicCount());
-  constexpr int kOverflow = ConstraintColoring::kMaxColors;  // its index in `count`
+  constexpr int kOverflowIndex = ConstraintColoring::kMaxColors;  // the overflow's, in `count`
   laneOf_.resize(contacts.size());
   colorOf_.resize(contacts.size());
   jointColor_.resize(jointSlots.size());
-  int count[kOverflow + 1] = {};  // constraints, joints and contacts
-  int jointCount[kOverflow + 1] = {};
+  int count[kOverflowIndex + 1] = {};  // constraints, joints and contacts
+  int jointCount[kOverflowIndex + 1] = {};
   auto dynamicEntry = [&](int slot) {
     const int entry = bodies.entryOf(slot);
     return bodies.isDynamicEntry(entry) ? entry : -1;
@@ -164,7 +163,7 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
     const int color =
         coloring.assign(dynamicEntry(jointBodies[k].first), dynamicEntry(jointBodies[k].second),
                         startColor(static_cast<uint64_t>(jointSlots[k]) << 32));
-    jointColor_[k] = color == ConstraintColoring::kOverflow ? kOverflow : color;
+    jointColor_[k] = color == ConstraintColoring::kOverflow ? kOverflowIndex : color;
     ++count[jointColor_[k]];
     ++jointCount[jointColor_[k]];
   }
@@ -176,19 +175,19 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
     if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
     if (dynamicA == dynamicB) continue;          // two members of one welded cluster
     const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
-    colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflow : color;
+    colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflowIndex : color;
     ++count[colorOf_[i]];
   }
   // A colour of a few constraints costs the threads a stage for little work: they join the
   // overflow. Then each colour's bundles, and last the overflow's.
-  int bundleOf[kOverflow + 1];  // each colour's first bundle
-  int compact[kOverflow + 1];   // each colour's index among the colours kept
+  int bundleOf[kOverflowIndex + 1];  // each colour's first bundle
+  int compact[kOverflowIndex + 1];   // each colour's index among the colours kept
   int bundles = 0;
   colorStart_.clear();
-  for (int color = 0; color <= kOverflow; ++color) {
-    if (color < kOverflow && count[color] < kMinColorSize) {
-      count[kOverflow] += count[color];
-      jointCount[kOverflow] += jointCount[color];
+  for (int color = 0; color <= kOverflowIndex; ++color) {
+    if (color < kOverflowIndex && count[color] < kMinColorSize) {
+      count[kOverflowIndex] += count[color];
+      jointCount[kOverflowIndex] += jointCount[color];
       bundleOf[color] = compact[color] = -1;
       continue;
     }
@@ -200,22 +199,22 @@ void ContactBundles::assign(const std::vector<Contact>& contacts,
   jointsOfColor_.resize(colorStart_.size());
   for (std::vector<int>& list : jointsOfColor_) list.clear();
   for (size_t k = 0; k < jointSlots.size(); ++k) {
-    const int color = compact[jointColor_[k]] < 0 ? kOverflow : jointColor_[k];
+    const int color = compact[jointColor_[k]] < 0 ? kOverflowIndex : jointColor_[k];
     jointsOfColor_[compact[color]].push_back(jointSlots[k]);
   }
   bundles_.resize(static_cast<size_t>(bundles));
   extras_.resize(static_cast<size_t>(bundles));
-  int rank[kOverflow + 1] = {};
+  int rank[kOverflowIndex + 1] = {};
   contactCount_ = 0;
   for (size_t i = 0; i < contacts.size(); ++i) {
     laneOf_[i] = -1;
     if (colorOf_[i] < 0) continue;
-    const int color = bundleOf[colorOf_[i]] < 0 ? kOverflow : colorOf_[i];
+    const int color = bundleOf[colorOf_[i]] < 0 ? kOverflowIndex : colorOf_[i];
     const int r = rank[color]++;
     laneOf_[i] = (bundleOf[color] + r / kBundleLanes) * kBundleLanes + r % kBundleLanes;
     ++contactCount_;
   }
-  for (int color = 0; color <= kOverflow; ++color) {
+  for (int color = 0; color <= kOverflowIndex; ++color) {
     const int lanes = count[color] - jointCount[color];
     for (int r = 0; bundleOf[color] >= 0 && r < lanes; r += kBundleLanes) {
       bundles_[bundleOf[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, lanes - r);

@@ -492,9 +492,9 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
   const V<D> mass2 =
       hn::IfThenElseZero(positive2, hn::Div(one, hn::IfThenElse(positive2, k22, one)));
   const V<D> det = hn::Sub(hn::Mul(k11, k22), hn::Mul(k12, k12));
-  // As contact_math.hpp's wellConditioned: k11^2 < 1000 det.
+  // As contact_math.hpp's wellConditioned: k11^2 < kMaxBlockCondition det.
   const auto block =
-      hn::And(twoPoints, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, 1000.0), det)));
+      hn::And(twoPoints, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, kMaxBlockCondition), det)));
   const V<D> inverseDet = hn::Div(one, hn::IfThenElse(block, det, one));
   // Pushes x >= 0 with K x + correction >= 0, complementary: the block from no push at all.
   V<D> x1, x2;

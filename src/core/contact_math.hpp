@@ -1,11 +1,13 @@
-// Small pieces of contact maths shared by the one-pass solvers (contact_solver.cpp) and the
-// sub-stepping solvers (contact_solver_substeps.cpp). A row along the unit direction d at a point
-// r_A, r_B from the centres of mass is described by its lever arms armA = cross(rA, d) and
-// armB = cross(rB, d).
+// Small pieces of contact maths for the one-pass solvers (contact_solver.cpp): a row's mass and
+// the two-point block's LCP. The sub-stepping solvers' SIMD kernels (contact_kernels.cpp) follow
+// the same formulas in lanes (the block's cases in this order, kMaxBlockCondition). A row along
+// the unit direction d at a point r_A, r_B from the centres of mass is described by its lever
+// arms armA = cross(rA, d) and armB = cross(rB, d).
 //
 // The iterations are written on scalars: a Vec2 built from two scalars and then used in packed
 // (SSE2) arithmetic is stored as two halves and loaded as one, which the CPU cannot forward
-// from its store buffer, and in the sub-step solver that stall was half of the time.
+// from its store buffer (in the sub-step solver, before it went to SIMD lanes, that stall was
+// half of its time).
 #pragma once
 
 #include "solver_body.hpp"

@@ -120,7 +120,7 @@ struct WorldImpl {
   std::vector<double> workerDeepest;
   std::vector<uint8_t> contactFates;                      // the narrow phase's verdict, by contact
   std::vector<std::vector<std::pair<int, Aabb>>> refits;  // proxies that left their fat boxes
-  // Reused buffers of the island pass (island_sleep.cpp).
+  // Continuous collision's bodies and clusters of this step (continuous.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
     int slot;
     Vec2 startCenter;
@@ -142,6 +142,7 @@ struct WorldImpl {
   std::vector<Joint*> guardedJoints;                   // reused: the joints warmStartGuard looks at
   std::vector<std::pair<Vec2, double>> onePassStarts;  // by dynamic entry: centre, angle
   std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
+  // Reused buffers of the island pass (island_sleep.cpp).
   std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
   double time = 0.0;
   uint64_t steps = 0;
