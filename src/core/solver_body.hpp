@@ -113,6 +113,7 @@ class SolverBodies {
   /// range for a body alone.
   std::pair<int, int> membersOf(int entry) const { return clusterRows_.ofRow(entry); }
   const MemberStart& member(int index) const { return clusterRows_.member(index); }
+  const ClusterRows& clusterRows() const { return clusterRows_; }
 
   /// Gives the kinematic entries their prescribed velocities back: impulses cannot change them
   /// (infinite mass) unless they are not finite, and then they must not move the body.

@@ -113,6 +113,7 @@ class SubstepBodies {
   /// range for a body alone.
   std::pair<int, int> membersOf(int entry) const { return clusterRows_.ofRow(entry); }
   const MemberStart& member(int index) const { return clusterRows_.member(index); }
+  const ClusterRows& clusterRows() const { return clusterRows_; }
 
   /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin,
   /// end) back to the bodies.

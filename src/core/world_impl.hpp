@@ -196,8 +196,26 @@ struct WorldImpl {
   void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
                   bool pose);
   void correctSubstepPositions(const BundlePass& pass);
-  /// Lists the joints of bodies the step moves, with their solver entries.
-  void collectActiveJoints();
+  /// Lists the joints the step solves (both solver paths): those with a body for which
+  /// moves(slot) holds, except welds inside a welded cluster (one rigid body already), with their
+  /// bodies; without warm starting their kept impulses are dropped.
+  template <class Moves>
+  void collectActiveJoints(Moves moves) {
+    activeJoints.clear();
+    activeJointBodies.clear();
+    for (size_t j = 0; j < joints.items.size(); ++j) {
+      if (!joints.alive[j]) continue;
+      Joint& joint = joints.items[j];
+      if (!moves(joint.bodyA) && !moves(joint.bodyB)) continue;
+      if (weldClusters.joins(joint.bodyA, joint.bodyB)) continue;
+      activeJoints.push_back(static_cast<int>(j));
+      activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
+      if (!def.warmStarting) {
+        joint.pointImpulse.setZero();
+        joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
+      }
+    }
+  }
   /// Prepares the active joints for a pass of time step dt with the given feedback.
   void prepareJoints(const Feedback& fb, double dt);
   void warmStartJoints();
@@ -213,6 +231,12 @@ struct WorldImpl {
   bool isFast(const Body& body, const Vec2& move, double turn, double arm) const;
   /// The one-pass solvers' fast bodies, from the whole step's motion of each dynamic entry.
   void findOnePassFastBodies();
+  /// Continuous collision's candidates from one solver row's motion this step (both solver
+  /// paths): the body in `slot` alone, or the welded cluster of the row (`rows`), swept whole
+  /// when any member moved fast. center0 and angle0: the row's centre of mass and angle when the
+  /// step began.
+  void noteIfFast(const ClusterRows& rows, int row, int slot, const Vec2& center0, double angle0,
+                  const Vec2& move, double turn);
   void keepOutOfStatic();  // keep_out_of_static.cpp, with the helpers below
   struct DeepStatic {      // a body deeper in a static one than it may be
     int slot, contact;

@@ -211,21 +211,6 @@ void WorldImpl::integrateVelocities(double dt) {
   }
 }
 
-void WorldImpl::collectActiveJoints() {
-  activeJoints.clear();
-  for (size_t j = 0; j < joints.items.size(); ++j) {
-    if (!joints.alive[j]) continue;
-    Joint& joint = joints.items[j];
-    if (!solverBodies.isActive(joint.bodyA) && !solverBodies.isActive(joint.bodyB)) continue;
-    if (weldClusters.joins(joint.bodyA, joint.bodyB)) continue;  // one rigid body already
-    activeJoints.push_back(static_cast<int>(j));
-    if (!def.warmStarting) {
-      joint.pointImpulse.setZero();
-      joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
-    }
-  }
-}
-
 template <class Op>
 void WorldImpl::onActiveJoints(Op op, bool pose) {
   for (const int j : activeJoints) {
@@ -255,7 +240,7 @@ void WorldImpl::solveJointVelocities(double dt) {
 
 void WorldImpl::solve(double dt) {
   StageLaps laps(profiled());
-  collectActiveJoints();
+  collectActiveJoints([&](int slot) { return solverBodies.isActive(slot); });
   Feedback fb;  // NGS: no bias, its position pass corrects the drift
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
   fb.maxPush = def.maxPushVelocity;
@@ -329,28 +314,30 @@ void WorldImpl::findOnePassFastBodies() {
   for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
     const SolverBody& entry = solverBodies[e];
     const auto& [center0, angle0] = onePassStarts[e];
-    const Vec2 move = entry.center - center0;
-    const double turn = entry.angle - angle0;
-    const auto [first, last] = solverBodies.membersOf(e);
-    if (first == last) {
-      const int slot = solverBodies.slotOf(e);
-      if (isFast(bodies.items[slot], move, turn, 0.0)) {
-        fastBodies.push_back({slot, center0, angle0, -1});
-      }
-      continue;
-    }
-    bool fast = false;  // a welded cluster is swept whole when any member moved fast
-    for (int k = first; k < last && !fast; ++k) {
-      const MemberStart& m = solverBodies.member(k);
-      fast = isFast(bodies.items[m.slot], move, turn, m.offset.norm());
-    }
-    if (!fast) continue;
-    const int cluster = static_cast<int>(fastClusters.size());
-    fastClusters.push_back({center0, move, turn, 1.0});
-    for (int k = first; k < last; ++k) {
-      const MemberStart& m = solverBodies.member(k);
-      fastBodies.push_back({m.slot, center0 + m.offset, m.angle0, cluster});
-    }
+    noteIfFast(solverBodies.clusterRows(), e, solverBodies.slotOf(e), center0, angle0,
+               entry.center - center0, entry.angle - angle0);
+  }
+}
+
+void WorldImpl::noteIfFast(const ClusterRows& rows, int row, int slot, const Vec2& center0,
+                           double angle0, const Vec2& move, double turn) {
+  const auto [first, last] = rows.ofRow(row);
+  if (first == last) {
+    if (isFast(bodies.items[slot], move, turn, 0.0))
+      fastBodies.push_back({slot, center0, angle0, -1});
+    return;
+  }
+  bool fast = false;  // a welded cluster is swept whole when any member moved fast
+  for (int k = first; k < last && !fast; ++k) {
+    const MemberStart& m = rows.member(k);
+    fast = isFast(bodies.items[m.slot], move, turn, m.offset.norm());
+  }
+  if (!fast) return;
+  const int cluster = static_cast<int>(fastClusters.size());
+  fastClusters.push_back({center0, move, turn, 1.0});
+  for (int k = first; k < last; ++k) {
+    const MemberStart& m = rows.member(k);
+    fastBodies.push_back({m.slot, center0 + m.offset, m.angle0, cluster});
   }
 }
 

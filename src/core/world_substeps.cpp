@@ -101,21 +101,7 @@ void WorldImpl::solveSubsteps(double dt) {
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
   laps.lap(&StepProfile::prepare);
 
-  activeJoints.clear();
-  activeJointBodies.clear();
-  for (size_t j = 0; j < joints.items.size(); ++j) {
-    if (!joints.alive[j]) continue;
-    Joint& joint = joints.items[j];
-    const bool moves =
-        sb.isDynamicEntry(sb.entryOf(joint.bodyA)) || sb.isDynamicEntry(sb.entryOf(joint.bodyB));
-    if (!moves || weldClusters.joins(joint.bodyA, joint.bodyB)) continue;
-    activeJoints.push_back(static_cast<int>(j));
-    activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
-    if (!def.warmStarting) {
-      joint.pointImpulse.setZero();
-      joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
-    }
-  }
+  collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
   contactBundles.assign(contacts, activeJoints, activeJointBodies, sb);
   laps.lap(&StepProfile::coloring);
   // The joints, colour after colour and the overflow last, copied side by side: a colour's
@@ -238,27 +224,9 @@ void WorldImpl::solveSubsteps(double dt) {
   fastClusters.clear();
   for (int e = 0; e < sb.dynamicCount(); ++e) {
     const BodyState& s = sb.state(e);
-    const auto [first, last] = sb.membersOf(e);
-    if (first == last) {
-      const BodyStart& start = sb.start(e);
-      if (isFast(bodies.items[start.slot], Vec2(s.dx, s.dy), s.turned, 0.0)) {
-        fastBodies.push_back({start.slot, sb.sim(e).center0, start.angle0, -1});
-      }
-      continue;
-    }
-    // A welded cluster is swept whole when any member moved fast.
-    bool fast = false;
-    for (int k = first; k < last && !fast; ++k) {
-      const MemberStart& m = sb.member(k);
-      fast = isFast(bodies.items[m.slot], Vec2(s.dx, s.dy), s.turned, m.offset.norm());
-    }
-    if (!fast) continue;
-    const int cluster = static_cast<int>(fastClusters.size());
-    fastClusters.push_back({sb.sim(e).center0, Vec2(s.dx, s.dy), s.turned, 1.0});
-    for (int k = first; k < last; ++k) {
-      const MemberStart& m = sb.member(k);
-      fastBodies.push_back({m.slot, sb.sim(e).center0 + m.offset, m.angle0, cluster});
-    }
+    const BodyStart& start = sb.start(e);
+    noteIfFast(sb.clusterRows(), e, start.slot, sb.sim(e).center0, start.angle0, Vec2(s.dx, s.dy),
+               s.turned);
   }
   laps.lap(&StepProfile::continuous);
 }
