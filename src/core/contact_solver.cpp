@@ -1,18 +1,12 @@
 #include "contact_solver.hpp"
 
 #include "contact_math.hpp"
+#include "position_pass.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace impulse2d {
-namespace {
-
-// The largest position correction one NGS pass applies, so deep overlaps (spawned inside each
-// other) separate over several steps instead of exploding apart.
-constexpr double kMaxLinearCorrection = 0.2;
-
-}  // namespace
 
 void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
                             const WorldDef& def, double dt) {
@@ -283,7 +277,7 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
       push(i, -correction[i] * rowMass(a, b, normalArmA(i), normalArmB(i)));
     }
   }
-  return deepest >= -3.0 * def.linearSlop;
+  return overlapsResolved(deepest, def.linearSlop);
 }
 
 }  // namespace impulse2d

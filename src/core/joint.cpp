@@ -27,12 +27,12 @@ void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double an
   // Each row's error is clamped, but the correction that removes it is K^-1 times it, and an
   // ill-conditioned K (anchors far out on light bodies, a long rail) made it move a body
   // kilometres in one pass. So the whole correction shrinks until neither body moves more than
-  // kMaxJointLinearCorrection nor turns more than kMaxAngularCorrection.
+  // kMaxLinearCorrection nor turns more than kMaxAngularCorrection.
   const double moved = std::max(a.invMass, b.invMass) * p.norm();
   const double turned =
       std::max(std::abs(a.invInertia * angularA), std::abs(b.invInertia * angularB));
   double scale = 1.0;
-  if (moved > kMaxJointLinearCorrection) scale = kMaxJointLinearCorrection / moved;
+  if (moved > kMaxLinearCorrection) scale = kMaxLinearCorrection / moved;
   if (turned * scale > kMaxAngularCorrection) scale = kMaxAngularCorrection / turned;
   if (!std::isfinite(moved + turned)) return;
   a.center -= scale * a.invMass * p;

@@ -14,13 +14,10 @@
 
 #include "feedback.hpp"
 #include "motion_limits.hpp"
+#include "position_pass.hpp"
 #include "solver_body.hpp"
 
 namespace impulse2d {
-
-constexpr double kAngularSlop = 2.0 * kPi / 180.0;           // rad left alone by NGS
-constexpr double kMaxAngularCorrection = 8.0 * kPi / 180.0;  // rad per NGS pass
-constexpr double kMaxJointLinearCorrection = 0.2;            // m per NGS pass
 
 /// The numbers of a joint's definition that the solver reads: JointDef without its name, its
 /// bodies and its creation-time geometry, so that a Joint copies without allocating (the

@@ -136,8 +136,7 @@ bool solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
   }
   const double k = rod.axis.isZero() ? 0.0 : inverseMassOf(rod, a, b);
   if (c != 0.0 && k > 0.0) {
-    const double impulse =
-        -std::clamp(c, -kMaxJointLinearCorrection, kMaxJointLinearCorrection) / k;
+    const double impulse = -std::clamp(c, -kMaxLinearCorrection, kMaxLinearCorrection) / k;
     applyJointCorrection(a, b, impulse * rod.axis, rod.armA * impulse, rod.armB * impulse);
   }
   return std::abs(c) <= def.linearSlop;

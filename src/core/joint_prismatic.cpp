@@ -165,7 +165,7 @@ bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const Wo
     if (x > joint.def.upper) c = x - joint.def.upper;
     limitError = std::abs(c);
     if (c != 0.0) {
-      c = std::clamp(c, -kMaxJointLinearCorrection, kMaxJointLinearCorrection);
+      c = std::clamp(c, -kMaxLinearCorrection, kMaxLinearCorrection);
       const double impulse = -axialMassOf(joint, a, b) * c;
       applyJointCorrection(a, b, impulse * joint.axis, joint.axisArmA * impulse,
                            joint.axisArmB * impulse);
@@ -176,7 +176,7 @@ bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const Wo
   const double perpendicular = rail.normal.dot(rail.d);
   const double linearError = std::max(limitError, std::abs(perpendicular));
   const double angularError = std::abs(joint.angle);
-  const Vec2 c(std::clamp(perpendicular, -kMaxJointLinearCorrection, kMaxJointLinearCorrection),
+  const Vec2 c(std::clamp(perpendicular, -kMaxLinearCorrection, kMaxLinearCorrection),
                std::clamp(joint.angle, -kMaxAngularCorrection, kMaxAngularCorrection));
   const Vec2 impulse = -(safeInverse(blockMatrix(joint, a, b)) * c);
   applyJointCorrection(a, b, impulse.x() * joint.normal,

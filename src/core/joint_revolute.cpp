@@ -87,7 +87,7 @@ bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
   const Vec2 rB = b.q.apply(joint.localAnchorB - b.localCenter);
   Vec2 c = (b.center + rB) - (a.center + rA);
   const double linearError = c.norm();
-  if (linearError > kMaxJointLinearCorrection) c *= kMaxJointLinearCorrection / linearError;
+  if (linearError > kMaxLinearCorrection) c *= kMaxLinearCorrection / linearError;
   const Vec2 impulse = -(safeInverse(pointMassMatrix(a, b, rA, rB)) * c);
   applyJointCorrection(a, b, impulse, cross(rA, impulse), cross(rB, impulse));
   return linearError <= def.linearSlop && angularError <= kAngularSlop;

@@ -117,7 +117,7 @@ bool solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDe
   const Vec2 rB = b.q.apply(joint.localAnchorB - b.localCenter);
   Vec2 gap = (b.center + rB) - (a.center + rA);
   const double linearError = gap.norm();
-  if (linearError > kMaxJointLinearCorrection) gap *= kMaxJointLinearCorrection / linearError;
+  if (linearError > kMaxLinearCorrection) gap *= kMaxLinearCorrection / linearError;
   const Eigen::Matrix3d k = blockMatrix(a, b, rA, rB);
 
   Vec2 p;

@@ -20,6 +20,8 @@
 // stepping thread.
 #include "world_impl.hpp"
 
+#include "position_pass.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -31,9 +33,6 @@ constexpr double kMaxJointHertzPerSubstepRate = 0.25;
 // Contact springs stiffer than this fraction of the sub-step rate were measured to shake the
 // 5050-box pyramid apart (0.19 sways, 0.25 collapses; 0.15 holds it within 3 cm).
 constexpr double kMaxContactHertzPerSubstepRate = 0.15;
-// The largest position correction one NGS pass applies, so deep overlaps (spawned inside each
-// other) separate over several steps instead of exploding apart.
-constexpr double kMaxLinearCorrection = 0.2;
 // Work shared among threads comes in blocks of this many bundles or joints: big enough that
 // claiming a block costs little, small enough that the threads finish a colour together.
 constexpr int kBundlesPerBlock = 4;
@@ -254,7 +253,7 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
       jointsOk = jointsOk && workerJointsOk[w];
       deepest = std::min(deepest, workerDeepest[w]);
     }
-    if (jointsOk && deepest >= -3.0 * def.linearSlop) break;
+    if (jointsOk && overlapsResolved(deepest, def.linearSlop)) break;
   }
 }
 
