@@ -4,22 +4,6 @@
 #include <cmath>
 
 namespace impulse2d {
-namespace {
-
-// What gravity, a force and a torque add over a sub-step h, and the damping factors of one.
-BodyLoad loadOver(double h, const Vec2& gravity, double invMass, double invInertia,
-                  const Vec2& force, double torque, double linearDamping, double angularDamping) {
-  BodyLoad load;
-  load.dvx = h * (gravity.x() + invMass * force.x());
-  load.dvy = h * (gravity.y() + invMass * force.y());
-  load.dw = h * invInertia * torque;
-  // Implicit damping: stable for any coefficient and sub-step.
-  if (linearDamping > 0.0) load.linearDamping = 1.0 / (1.0 + h * linearDamping);
-  if (angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * angularDamping);
-  return load;
-}
-
-}  // namespace
 
 void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
                            const Vec2& gravity, double h, const MotionLimits& limits,
@@ -157,10 +141,7 @@ void SubstepBodies::integrateVelocities(int begin, int end) {
   const int last = std::min(end, dynamicCount_);
   for (int e = begin; e < last; ++e) {
     BodyState& s = states_[e];
-    const BodyLoad& load = loads_[e];
-    s.vx = (s.vx + load.dvx) * load.linearDamping;
-    s.vy = (s.vy + load.dvy) * load.linearDamping;
-    s.w = (s.w + load.dw) * load.angularDamping;
+    applyLoad(loads_[e], s.vx, s.vy, s.w);
     limits_.apply(s.vx, s.vy, s.w);
   }
 }

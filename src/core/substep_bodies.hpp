@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "body_load.hpp"
 #include "motion_limits.hpp"
 #include "solver_body.hpp"
 #include "step_workers.hpp"
@@ -41,13 +42,6 @@ enum BodyStateField : int64_t { kVx = 0, kVy, kW, kTurned, kDx, kDy, kQc, kQs, k
 struct BodySim {
   Vec2 center0 = Vec2::Zero();  // centre of mass when the step began
   double invMass = 0.0, invInertia = 0.0;
-};
-
-/// What integrating a dynamic body's velocity adds each sub-step (constant over the step):
-///   v = (v + dv) * damping.
-struct BodyLoad {
-  double dvx = 0.0, dvy = 0.0, dw = 0.0;
-  double linearDamping = 1.0, angularDamping = 1.0;  // factors per sub-step
 };
 
 /// The rest, read once or twice a step: where the body began, and a kinematic body's velocity.

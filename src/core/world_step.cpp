@@ -193,11 +193,11 @@ void WorldImpl::integrateVelocities(double dt) {
     SolverBody& body = solverBodies[e];
     if (body.invMass == 0.0) continue;  // overflowed earlier in this step (below)
     const SolverBodyLoad& load = solverBodies.load(e);
-    body.linearVelocity += dt * (def.gravity + body.invMass * load.force);
-    body.angularVelocity += dt * body.invInertia * load.torque;
-    // Implicit damping: stable for any damping coefficient and time step.
-    if (load.linearDamping > 0.0) body.linearVelocity *= 1.0 / (1.0 + dt * load.linearDamping);
-    if (load.angularDamping > 0.0) body.angularVelocity *= 1.0 / (1.0 + dt * load.angularDamping);
+    double vx = body.linearVelocity.x(), vy = body.linearVelocity.y();
+    applyLoad(loadOver(dt, def.gravity, body.invMass, body.invInertia, load.force, load.torque,
+                       load.linearDamping, load.angularDamping),
+              vx, vy, body.angularVelocity);
+    body.linearVelocity = Vec2(vx, vy);
     limits.apply(body.linearVelocity, body.angularVelocity);
     // The last guard against non-finite impulses: 0 x inf is NaN in the static and sleeping
     // bodies' read-only entries, which every other body touching them reads. A body whose
