@@ -79,7 +79,7 @@ JointParams paramsOf(const JointDef& def) {
 }
 
 void initJoint(Joint& joint, const JointDef& def, const Body& a, const Body& b) {
-  joint.def = paramsOf(def);
+  joint.params = paramsOf(def);
   joint.localAnchorA = a.xf.applyInverse(def.anchor);
   joint.localAnchorB = b.xf.applyInverse(def.anchor);
   joint.referenceAngle = b.angle - a.angle;
@@ -100,7 +100,7 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
   if (!def.warmStarting) {  // the world resets only the impulses every type shares
     joint.angularImpulse = joint.lengthImpulse = 0.0;
   }
-  switch (joint.def.type) {
+  switch (joint.params.type) {
     case JointType::Revolute:
       prepareRevolute(joint, a, b, fb, dt);
       break;
@@ -117,7 +117,7 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
 }
 
 void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
-  switch (joint.def.type) {
+  switch (joint.params.type) {
     case JointType::Revolute:
       warmStartRevolute(joint, a, b);
       break;
@@ -166,7 +166,7 @@ void scaleJointImpulses(Joint& joint, double scale) {
 }
 
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
-  switch (joint.def.type) {
+  switch (joint.params.type) {
     case JointType::Revolute:
       solveRevoluteVelocity(joint, a, b, dt);
       break;
@@ -183,7 +183,7 @@ void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
 }
 
 bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
-  switch (joint.def.type) {
+  switch (joint.params.type) {
     case JointType::Revolute:
       return solveRevolutePosition(joint, a, b, def);
     case JointType::Prismatic:
@@ -199,9 +199,9 @@ bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldD
 JointState measureJoint(const Joint& joint, const Body& a, const Body& b) {
   const SolverBody viewA = solverView(a), viewB = solverView(b);
   JointState state;
-  if (joint.def.type == JointType::Prismatic) {
+  if (joint.params.type == JointType::Prismatic) {
     state = measurePrismatic(joint, viewA, viewB);
-  } else if (joint.def.type == JointType::Distance) {
+  } else if (joint.params.type == JointType::Distance) {
     state = measureDistance(joint, viewA, viewB);
   } else {  // revolute and weld: the relative angle
     state.position = b.angle - a.angle - joint.referenceAngle;

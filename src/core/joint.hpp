@@ -35,8 +35,8 @@ JointParams paramsOf(const JointDef& def);
 
 struct Joint {
   JointId id;
-  JointParams def;
-  int bodyA = -1, bodyB = -1;                                     // slot indices
+  JointParams params;          // the definition's numbers the solver reads
+  int bodyA = -1, bodyB = -1;  // slot indices
   Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
   double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame

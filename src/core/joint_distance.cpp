@@ -24,7 +24,7 @@ namespace {
 // Below this the direction of the rod is noise; the rows are then left out for the step.
 constexpr double kMinDirectionLength = 1e-9;
 
-bool isSpring(const Joint& joint) { return joint.def.frequency > 0.0; }
+bool isSpring(const Joint& joint) { return joint.params.frequency > 0.0; }
 
 struct Rod {
   Vec2 rA, rB, axis;
@@ -73,17 +73,17 @@ void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
 
   if (isSpring(joint)) {
     const Softness soft =
-        softness(joint.def.frequency, joint.def.dampingRatio, joint.axialMass, dt);
+        softness(joint.params.frequency, joint.params.dampingRatio, joint.axialMass, dt);
     joint.springGamma = soft.gamma;
     joint.springMass = k + soft.gamma > 0.0 ? 1.0 / (k + soft.gamma) : 0.0;
     joint.lengthBias = -soft.biasRate * c;
     joint.lowerBias =
-        limitBias(rod.length - joint.def.minLength, fb, dt, &joint.lowerFeedback, fb.maxPush);
+        limitBias(rod.length - joint.params.minLength, fb, dt, &joint.lowerFeedback, fb.maxPush);
     // An infinite maxLength never binds: its row is skipped, and inf never enters a bias.
-    joint.upperBias =
-        std::isfinite(joint.def.maxLength)
-            ? limitBias(joint.def.maxLength - rod.length, fb, dt, &joint.upperFeedback, fb.maxPush)
-            : 0.0;
+    joint.upperBias = std::isfinite(joint.params.maxLength)
+                          ? limitBias(joint.params.maxLength - rod.length, fb, dt,
+                                      &joint.upperFeedback, fb.maxPush)
+                          : 0.0;
   } else {
     joint.lengthBias = linearBias(c, fb);
     joint.lowerImpulse = joint.upperImpulse = 0.0;
@@ -110,13 +110,13 @@ void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*
   joint.lengthImpulse += spring;
   applyAxial(joint, a, b, spring);
 
-  if (joint.def.minLength > 0.0) {  // length - min >= 0
+  if (joint.params.minLength > 0.0) {  // length - min >= 0
     const double lower = solveOneSided(joint.lowerImpulse, joint.axialMass,
                                        rate() + joint.lowerBias, joint.lowerFeedback);
     applyAxial(joint, a, b, lower - joint.lowerImpulse);
     joint.lowerImpulse = lower;
   }
-  if (std::isfinite(joint.def.maxLength)) {  // max - length >= 0, pushing along -u
+  if (std::isfinite(joint.params.maxLength)) {  // max - length >= 0, pushing along -u
     const double upper = solveOneSided(joint.upperImpulse, joint.axialMass,
                                        -rate() + joint.upperBias, joint.upperFeedback);
     applyAxial(joint, a, b, -(upper - joint.upperImpulse));
@@ -129,10 +129,10 @@ bool solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
   double c = 0.0;
   if (!isSpring(joint)) {
     c = rod.length - joint.restLength;
-  } else if (rod.length < joint.def.minLength) {
-    c = rod.length - joint.def.minLength;
-  } else if (rod.length > joint.def.maxLength) {
-    c = rod.length - joint.def.maxLength;
+  } else if (rod.length < joint.params.minLength) {
+    c = rod.length - joint.params.minLength;
+  } else if (rod.length > joint.params.maxLength) {
+    c = rod.length - joint.params.maxLength;
   }
   const double k = rod.axis.isZero() ? 0.0 : inverseMassOf(rod, a, b);
   if (c != 0.0 && k > 0.0) {

@@ -108,11 +108,11 @@ void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback
   joint.pointBias =
       Vec2(linearBias(error.x(), fb), angularBias(error.y(), fb, anchorReach(joint.rA, joint.rB)));
   joint.lowerBias =
-      limitBias(joint.axialPosition - joint.def.lower, fb, dt, &joint.lowerFeedback, fb.maxPush);
+      limitBias(joint.axialPosition - joint.params.lower, fb, dt, &joint.lowerFeedback, fb.maxPush);
   joint.upperBias =
-      limitBias(joint.def.upper - joint.axialPosition, fb, dt, &joint.upperFeedback, fb.maxPush);
-  if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
-  if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
+      limitBias(joint.params.upper - joint.axialPosition, fb, dt, &joint.upperFeedback, fb.maxPush);
+  if (!joint.params.enableMotor) joint.motorImpulse = 0.0;
+  if (!joint.params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
 
 void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b) {
@@ -121,16 +121,16 @@ void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b) {
 }
 
 void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
-  const JointParams& def = joint.def;
-  if (def.enableMotor) {
-    const double maxImpulse = def.maxMotorTorque * dt;  // a force (N) for this joint
-    const double total =
-        std::clamp(joint.motorImpulse - joint.axialMass * (axialRate(joint, a, b) - def.motorSpeed),
-                   -maxImpulse, maxImpulse);
+  const JointParams& params = joint.params;
+  if (params.enableMotor) {
+    const double maxImpulse = params.maxMotorTorque * dt;  // a force (N) for this joint
+    const double total = std::clamp(
+        joint.motorImpulse - joint.axialMass * (axialRate(joint, a, b) - params.motorSpeed),
+        -maxImpulse, maxImpulse);
     applyRows(joint, a, b, 0.0, 0.0, total - joint.motorImpulse);
     joint.motorImpulse = total;
   }
-  if (def.enableLimit) {
+  if (params.enableLimit) {
     // Lower: x - lower >= 0. Upper: upper - x >= 0, whose impulse pushes along -u.
     const double lower =
         solveOneSided(joint.lowerImpulse, joint.axialMass, axialRate(joint, a, b) + joint.lowerBias,
@@ -158,11 +158,11 @@ void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double d
 bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
   storeRail(joint, railOf(joint, a, b), a, b);
   double limitError = 0.0;
-  if (joint.def.enableLimit) {
+  if (joint.params.enableLimit) {
     const double x = joint.axialPosition;
     double c = 0.0;
-    if (x < joint.def.lower) c = x - joint.def.lower;
-    if (x > joint.def.upper) c = x - joint.def.upper;
+    if (x < joint.params.lower) c = x - joint.params.lower;
+    if (x > joint.params.upper) c = x - joint.params.upper;
     limitError = std::abs(c);
     if (c != 0.0) {
       c = std::clamp(c, -kMaxLinearCorrection, kMaxLinearCorrection);

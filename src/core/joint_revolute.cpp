@@ -26,10 +26,12 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
   joint.pointBias = pointBias(gap, fb);
   const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
-  joint.lowerBias = limitBias(joint.angle - joint.def.lower, fb, dt, &joint.lowerFeedback, maxTurn);
-  joint.upperBias = limitBias(joint.def.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
-  if (!joint.def.enableMotor) joint.motorImpulse = 0.0;
-  if (!joint.def.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
+  joint.lowerBias =
+      limitBias(joint.angle - joint.params.lower, fb, dt, &joint.lowerFeedback, maxTurn);
+  joint.upperBias =
+      limitBias(joint.params.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
+  if (!joint.params.enableMotor) joint.motorImpulse = 0.0;
+  if (!joint.params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
 
 void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
@@ -39,16 +41,16 @@ void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
 }
 
 void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
-  const JointParams& def = joint.def;
-  if (def.enableMotor) {
-    const double cdot = b.angularVelocity - a.angularVelocity - def.motorSpeed;
-    const double maxImpulse = def.maxMotorTorque * dt;
+  const JointParams& params = joint.params;
+  if (params.enableMotor) {
+    const double cdot = b.angularVelocity - a.angularVelocity - params.motorSpeed;
+    const double maxImpulse = params.maxMotorTorque * dt;
     const double total =
         std::clamp(joint.motorImpulse - joint.axialMass * cdot, -maxImpulse, maxImpulse);
     applyAngular(a, b, total - joint.motorImpulse);
     joint.motorImpulse = total;
   }
-  if (def.enableLimit) {
+  if (params.enableLimit) {
     // Lower: angle - lower >= 0. Upper: upper - angle >= 0, so its impulse acts negatively.
     const double cdotLower = b.angularVelocity - a.angularVelocity;
     const double lower = solveOneSided(joint.lowerImpulse, joint.axialMass,
@@ -73,11 +75,11 @@ void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt
 
 bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
   double angularError = 0.0;
-  if (joint.def.enableLimit && joint.axialMass > 0.0) {
+  if (joint.params.enableLimit && joint.axialMass > 0.0) {
     const double angle = b.angle - a.angle - joint.referenceAngle;
     double c = 0.0;
-    if (angle < joint.def.lower) c = angle - joint.def.lower;
-    if (angle > joint.def.upper) c = angle - joint.def.upper;
+    if (angle < joint.params.lower) c = angle - joint.params.lower;
+    if (angle > joint.params.upper) c = angle - joint.params.upper;
     angularError = std::abs(c);
     c = std::clamp(c, -kMaxAngularCorrection, kMaxAngularCorrection);
     const double impulse = -joint.axialMass * c;

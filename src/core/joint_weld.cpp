@@ -22,7 +22,7 @@
 namespace impulse2d {
 namespace {
 
-bool isSoft(const Joint& joint) { return joint.def.frequency > 0.0; }
+bool isSoft(const Joint& joint) { return joint.params.frequency > 0.0; }
 
 Eigen::Matrix3d blockMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
                             const Vec2& rB) {
@@ -65,7 +65,7 @@ void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb,
   if (isSoft(joint)) {
     joint.pointMass = safeInverse(k.topLeftCorner<2, 2>());
     const double inertiaSum = a.invInertia + b.invInertia;
-    const Softness soft = softness(joint.def.frequency, joint.def.dampingRatio,
+    const Softness soft = softness(joint.params.frequency, joint.params.dampingRatio,
                                    inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0, dt);
     joint.springGamma = soft.gamma;
     joint.springMass = inertiaSum + soft.gamma > 0.0 ? 1.0 / (inertiaSum + soft.gamma) : 0.0;

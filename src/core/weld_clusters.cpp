@@ -30,7 +30,7 @@ bool merges(const Joint& joint, const std::vector<Body>& bodies) {
 }  // namespace
 
 bool isRigidWeld(const Joint& joint) {
-  return joint.def.type == JointType::Weld && joint.def.frequency <= 0.0;
+  return joint.params.type == JointType::Weld && joint.params.frequency <= 0.0;
 }
 
 int WeldClusters::findRoot(int slot) {

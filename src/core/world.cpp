@@ -72,7 +72,7 @@ bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
     const Joint& joint = joints.items[j];
     const bool connects = (joint.bodyA == bodyA && joint.bodyB == bodyB) ||
                           (joint.bodyA == bodyB && joint.bodyB == bodyA);
-    if (connects && !joint.def.collideConnected) return false;
+    if (connects && !joint.params.collideConnected) return false;
   }
   // Filters belong to shapes: the pair of bodies is kept when any two of their shapes may touch,
   // and updateContact leaves the others without points.
@@ -463,9 +463,9 @@ bool World::setJointMotor(JointId id, bool enable, double speed, double maxForce
   }
   Joint& joint = impl_->joints.items[id.index];
   JointDef& def = impl_->jointDefs[id.index];
-  def.enableMotor = joint.def.enableMotor = enable;
-  def.motorSpeed = joint.def.motorSpeed = speed;
-  def.maxMotorTorque = joint.def.maxMotorTorque = maxForceOrTorque;
+  def.enableMotor = joint.params.enableMotor = enable;
+  def.motorSpeed = joint.params.motorSpeed = speed;
+  def.maxMotorTorque = joint.params.maxMotorTorque = maxForceOrTorque;
   impl_->wakeBody(impl_->bodies.items[joint.bodyA]);
   impl_->wakeBody(impl_->bodies.items[joint.bodyB]);
   return true;
