@@ -1,6 +1,9 @@
 // impulse2d_bench: speed against error, impulse2d side by side with Box2D and Chipmunk when they
 // were compiled in. Writes one CSV row per (engine, solver, scene, settings) and a memory CSV.
 #include <unistd.h>
+
+#include <impulse2d/simd.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -494,6 +497,8 @@ int main(int argc, char** argv) {
       return 0;
     }
   }
+  const std::string simd = impulse2d::useSimdTargetFromEnvironment();
+  if (!simd.empty()) std::cerr << "impulse2d_bench: " << simd << "\n";
   Options options;
   const std::string why = parseOptions(argc, argv, &options);
   if (!why.empty()) {

@@ -23,6 +23,8 @@
 #include "contact_bundles.hpp"
 #include "contact_math.hpp"
 
+#include <impulse2d/simd.hpp>
+
 HWY_BEFORE_NAMESPACE();
 namespace impulse2d {
 namespace HWY_NAMESPACE {
@@ -695,8 +697,7 @@ const char* contactKernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTarget)();
 
 namespace {
 
-// Every target this build has and this processor runs, best first; read once, before any
-// useContactKernelTarget() narrows what Highway reports.
+// Every target this build has and this processor runs, best first (read once).
 const std::vector<int64_t>& availableTargets() {
   static const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
   return targets;
@@ -713,29 +714,27 @@ std::vector<std::string> contactKernelTargets() {
 bool useContactKernelTarget(const std::string& name) {
   for (const int64_t target : availableTargets()) {
     if (!name.empty() && name != hwy::TargetName(target)) continue;
-    hwy::SetSupportedTargetsForTest(name.empty() ? 0 : target);  // 0: every target again
-    hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+    // The dispatch takes the best target of the mask (with the scalar fallback): the one named,
+    // or all this processor has. No test hook: DisableTargets and the mask are the production
+    // interface.
+    hwy::GetChosenTarget().Update(name.empty() ? hwy::SupportedTargets() : target);
     return true;
   }
   return false;
 }
 
-namespace {
+std::vector<std::string> simdTargets() { return contactKernelTargets(); }
+std::string simdTarget() { return contactKernelTarget(); }
+bool useSimdTarget(const std::string& name) { return useContactKernelTarget(name); }
 
-// IMPULSE2D_SIMD=AVX2 (or any name contactKernelTargets() lists) runs the kernels on that
-// instruction set from the start: to compare them, or to keep a processor out of AVX-512.
-const bool kChosenFromEnvironment = [] {
+std::string useSimdTargetFromEnvironment() {
   const char* name = std::getenv("IMPULSE2D_SIMD");
-  if (name == nullptr || *name == '\0') return false;
-  if (useContactKernelTarget(name)) return true;
+  if (name == nullptr || *name == '\0' || useSimdTarget(name)) return "";
   std::string known;
-  for (const std::string& target : contactKernelTargets()) known += " " + target;
-  std::fprintf(stderr, "impulse2d: IMPULSE2D_SIMD=%s is not one of:%s; using %s\n", name,
-               known.c_str(), contactKernelTarget());
-  return false;
-}();
-
-}  // namespace
+  for (const std::string& target : simdTargets()) known += " " + target;
+  return std::string("IMPULSE2D_SIMD=") + name + " is not one of:" + known + "; using " +
+         simdTarget();
+}
 
 }  // namespace impulse2d
 #endif  // HWY_ONCE

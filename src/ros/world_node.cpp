@@ -6,6 +6,7 @@
 #include "scene_param.hpp"
 
 #include <impulse2d/limits.hpp>
+#include <impulse2d/simd.hpp>
 
 #include <impulse2d/ContactArray.h>
 #include <rosgraph_msgs/Clock.h>
@@ -40,6 +41,8 @@ WorldNode::Lock::~Lock() { node_.mutex_.unlock(); }
 
 WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, const std::string& name)
     : nh_(nh), pnh_(pnh), name_(name) {
+  const std::string simd = useSimdTargetFromEnvironment();  // before the first step
+  if (!simd.empty()) ROS_WARN("[%s] %s", name_.c_str(), simd.c_str());
   setUpDevices();
   loadStartScene();
   loadStartUrdf();

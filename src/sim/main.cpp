@@ -2,6 +2,7 @@
 // states and contacts as CSV and the final state's hash. No ROS master is involved.
 #include <impulse2d/devices.hpp>
 #include <impulse2d/scene.hpp>
+#include <impulse2d/simd.hpp>
 #include <impulse2d/world.hpp>
 
 #include "csv_output.hpp"
@@ -184,6 +185,8 @@ int main(int argc, char** argv) {
   Options options;
   std::string error;
   if (!parseOptions(argc, argv, &options, &error)) return fail(kExitUsage, error);
+  const std::string simd = impulse2d::useSimdTargetFromEnvironment();
+  if (!simd.empty()) std::fprintf(stderr, "impulse2d_sim: %s\n", simd.c_str());
   if (options.help) {
     std::fputs(kUsage, stdout);
     return 0;

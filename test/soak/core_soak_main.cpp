@@ -9,6 +9,7 @@
 // other solvers; --keep-going runs every seed asked for and counts the failures). --watch prints
 // one body's pose, velocity and contacts after every step (to see how a violation came about).
 #include <impulse2d/defs.hpp>
+#include <impulse2d/simd.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -59,6 +60,8 @@ std::string xmlEscape(const std::string& s) {
 
 int main(int argc, char** argv) {
   using namespace impulse2d;
+  const std::string simd = useSimdTargetFromEnvironment();
+  if (!simd.empty()) std::fprintf(stderr, "impulse2d_core_soak: %s\n", simd.c_str());
   double seed = 1, seconds = 60, runs = 0, steps = 600, threads = 1;
   bool topDown = false, keepGoing = false;
   std::string junit, watch;

@@ -1,6 +1,7 @@
 // impulse2d_sim as users run it: exit codes, one-line errors, the CSV layouts of the contract,
 // reproducible hashes, and a full-length pyramid run.
 #include <impulse2d/scene.hpp>
+#include <impulse2d/simd.hpp>
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -340,6 +341,26 @@ TEST(SimCli, ProfilePrintsEachStageAndChangesNothing) {
   for (const char* stage : {"broad phase", "narrow phase", "prepare", "solve", "integrate"}) {
     EXPECT_TRUE(names.count(stage)) << stage << " missing from\n" << timed.out;
   }
+}
+
+// IMPULSE2D_SIMD picks the kernels' instruction set at start-up; a name it does not know is
+// said on stderr and the run goes on, on the best one. Any choice gives the same hash.
+TEST(SimCli, SimdFromTheEnvironment) {
+  const std::vector<std::string> args = {config("pyramid.yaml"), "--steps", "120", "--hash"};
+  const SimRun best = runSim(args);
+  ASSERT_EQ(best.exitCode, 0) << best.err;
+  setenv("IMPULSE2D_SIMD", "NEON_BF16", 1);
+  const SimRun bogus = runSim(args);
+  setenv("IMPULSE2D_SIMD", simdTargets().back().c_str(), 1);  // the portable one
+  const SimRun portable = runSim(args);
+  unsetenv("IMPULSE2D_SIMD");
+  ASSERT_EQ(bogus.exitCode, 0) << bogus.err;
+  EXPECT_EQ(bogus.err.rfind("impulse2d_sim: IMPULSE2D_SIMD=NEON_BF16 is not one of:", 0), 0u)
+      << bogus.err;
+  EXPECT_EQ(lines(bogus.out).back(), lines(best.out).back());
+  ASSERT_EQ(portable.exitCode, 0) << portable.err;
+  EXPECT_TRUE(portable.err.empty()) << portable.err;
+  EXPECT_EQ(lines(portable.out).back(), lines(best.out).back());
 }
 
 TEST(SimCli, PyramidRunsForTenSimulatedSeconds) {

@@ -3,9 +3,11 @@
 // at a time on the portable target is the scalar reference) and on any number of threads.
 #include <gtest/gtest.h>
 #include <impulse2d/scene.hpp>
+#include <impulse2d/simd.hpp>
 #include <impulse2d/world.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,30 @@ TEST_P(WideSolver, AnyNumberOfThreadsGivesTheSameState) {
 TEST(WideSolver, AnUnknownInstructionSetIsRefused) {
   EXPECT_FALSE(useContactKernelTarget("NEON_BF16"));
   EXPECT_FALSE(contactKernelTargets().empty());
+}
+
+// The choice is an explicit call (programs make it at start-up): IMPULSE2D_SIMD names one of the
+// targets, anything else is refused with the choices and changes nothing, unset or empty leaves
+// the kernels where they are.
+TEST(WideSolver, TheEnvironmentChoosesTheInstructionSetWhenAsked) {
+  ASSERT_TRUE(useSimdTarget(""));
+  const std::string best = simdTarget();
+  ASSERT_EQ(best, simdTargets().front());
+  setenv("IMPULSE2D_SIMD", "NEON_BF16", 1);
+  const std::string refused = useSimdTargetFromEnvironment();
+  EXPECT_EQ(refused.rfind("IMPULSE2D_SIMD=NEON_BF16 is not one of: " + best, 0), 0u) << refused;
+  EXPECT_EQ(simdTarget(), best);
+  const std::string last = simdTargets().back();
+  setenv("IMPULSE2D_SIMD", last.c_str(), 1);
+  EXPECT_EQ(useSimdTargetFromEnvironment(), "");
+  EXPECT_EQ(simdTarget(), last);
+  setenv("IMPULSE2D_SIMD", "", 1);
+  EXPECT_EQ(useSimdTargetFromEnvironment(), "");
+  EXPECT_EQ(simdTarget(), last);
+  unsetenv("IMPULSE2D_SIMD");
+  EXPECT_EQ(useSimdTargetFromEnvironment(), "");
+  ASSERT_TRUE(useSimdTarget(""));
+  EXPECT_EQ(simdTarget(), best);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSolvers, WideSolver, ::testing::ValuesIn(test::allSolvers()),
