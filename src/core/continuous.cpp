@@ -71,8 +71,8 @@ void WorldImpl::solveContinuous() {
 
     double impact = 1.0;
     tree.query(swept.inflated(def.linearSlop), [&](int proxy) {
-      const int slot = static_cast<int>(tree.userData(proxy) >> 8);
-      const int shapeIndex = static_cast<int>(tree.userData(proxy) & 0xff);
+      const int slot = proxySlot(tree.userData(proxy));
+      const int shapeIndex = proxyShape(tree.userData(proxy));
       if (slot == fast.slot) return;
       const Body& other = bodies.items[slot];
       if (other.type != BodyType::Static && !body.bullet) return;

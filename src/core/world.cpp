@@ -31,8 +31,7 @@ void WorldImpl::createProxies(Body& body) {
   body.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
-    const int proxy =
-        tree.createProxy(box, (static_cast<int64_t>(body.id.index) << 8) | int64_t(i));
+    const int proxy = tree.createProxy(box, proxyData(body.id.index, static_cast<int>(i)));
     body.proxies.push_back(proxy);
     markMoved(proxy);
   }

@@ -81,6 +81,14 @@ inline bool isMoving(const Body& body) {
                    (body.linearVelocity.squaredNorm() > 0.0 || body.angularVelocity != 0.0);
 }
 
+/// A broad-phase proxy's user data names its shape: body slot << 8 | shape index (the 8 bits hold
+/// kMaxShapesPerBody, limits.hpp).
+inline int64_t proxyData(int slot, int shape) {
+  return (static_cast<int64_t>(slot) << 8) | static_cast<int64_t>(shape);
+}
+inline int proxySlot(int64_t userData) { return static_cast<int>(userData >> 8); }
+inline int proxyShape(int64_t userData) { return static_cast<int>(userData & 0xff); }
+
 struct WorldImpl {
   WorldDef def;
   bool profiling = false;

@@ -1,5 +1,5 @@
-// What World's ray casts share (world_queries.cpp, ray_fan.cpp): how a proxy names its shape, the
-// rule that picks one hit among equally near ones, and the fan form's entry point.
+// What World's ray casts share (world_queries.cpp, ray_fan.cpp): the rule that picks one hit
+// among equally near ones, and the fan form's entry point.
 #pragma once
 
 #include "world_impl.hpp"
@@ -9,10 +9,6 @@
 #include <vector>
 
 namespace impulse2d {
-
-/// A proxy's user data, as createProxies (world.cpp) packs it: body slot << 8 | shape index.
-inline int proxySlot(int64_t userData) { return static_cast<int>(userData >> 8); }
-inline int proxyShape(int64_t userData) { return static_cast<int>(userData & 0xff); }
 
 /// Whether a hit at `fraction` on (slot, shape) beats `best`. Equal fractions go to the lower
 /// body slot, then the lower shape index, so the answer does not depend on the order in which

@@ -104,8 +104,8 @@ void WorldImpl::findNewContacts() {
   std::vector<Contact>& fresh = newContacts;
   fresh.clear();
   for (const auto& [p, q] : pairs) {
-    int slotA = static_cast<int>(tree.userData(p) >> 8), shapeA = tree.userData(p) & 0xff;
-    int slotB = static_cast<int>(tree.userData(q) >> 8), shapeB = tree.userData(q) & 0xff;
+    int slotA = proxySlot(tree.userData(p)), shapeA = proxyShape(tree.userData(p));
+    int slotB = proxySlot(tree.userData(q)), shapeB = proxyShape(tree.userData(q));
     if (slotA == slotB) continue;
     if (slotA > slotB) {
       std::swap(slotA, slotB);
@@ -119,7 +119,7 @@ void WorldImpl::findNewContacts() {
     contact.bodyB = slotB;
     contact.shapeA = shapeA;
     contact.shapeB = shapeB;
-    contact.proxyA = slotA == static_cast<int>(tree.userData(p) >> 8) ? p : q;
+    contact.proxyA = slotA == proxySlot(tree.userData(p)) ? p : q;
     contact.proxyB = contact.proxyA == p ? q : p;
     const Shape& sa = bodies.items[slotA].shapes[shapeA];
     const Shape& sb = bodies.items[slotB].shapes[shapeB];
