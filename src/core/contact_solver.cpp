@@ -20,7 +20,8 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     if (m.pointCount == 0) continue;
     // Asleep, or resting on something that cannot move.
     if (!bodies.isActive(contact.bodyA) && !bodies.isActive(contact.bodyB)) continue;
-    const int entryA = bodies.entryOf(contact.bodyA), entryB = bodies.entryOf(contact.bodyB);
+    const int entryA = bodies.ensureEntryOf(contact.bodyA),
+              entryB = bodies.ensureEntryOf(contact.bodyB);
     if (entryA == entryB) continue;                      // two members of one welded cluster
     ContactConstraint& c = constraints_.emplace_back();  // built in place: no copies
     ContactConstraintExtra& extra = extras_.emplace_back();

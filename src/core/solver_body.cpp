@@ -56,13 +56,13 @@ void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<cha
   for (int c = 0; c < clusters.count(); ++c) addCluster(clusters, c);
 }
 
-int SolverBodies::entryOf(int slot) {
+int SolverBodies::ensureEntryOf(int slot) {
   if (indexOfSlot_[slot] == kNone) add((*bodies_)[slot], slot, true);
   return indexOfSlot_[slot];
 }
 
 SolverBody SolverBodies::view(int slot) {
-  SolverBody e = entries_[entryOf(slot)];
+  SolverBody e = entries_[ensureEntryOf(slot)];
   if (const MemberStart* m = clusterRows_.ofSlot(slot)) {
     e.q = m->q0 * e.q;  // the cluster's entry turns from 0
     e.angle += m->angle0;

@@ -81,8 +81,8 @@ class SolverBodies {
  public:
   /// Starts a step: one entry for every living, awake, non-static body (dynamic first), in slot
   /// order, except that each welded cluster (weld_clusters.hpp) is one entry, its root's, which
-  /// every member's slot maps to. Entries of other bodies are added by entryOf() as constraints
-  /// need them.
+  /// every member's slot maps to. Entries of other bodies are added by ensureEntryOf() as
+  /// constraints need them.
   void gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
               const WeldClusters& clusters);
   /// The entry of the body in `slot`, or -1 when the step does not move it.
@@ -91,7 +91,7 @@ class SolverBodies {
   }
   /// The entry of the body in `slot`, adding a read-only one (no velocity, infinite mass, its
   /// pose) for a body the step does not move.
-  int entryOf(int slot);
+  int ensureEntryOf(int slot);
   bool isDynamic(int entry) const { return entry < dynamicCount_; }
   /// Whether the step moves the body in `slot` as a dynamic body (awake).
   bool isActive(int slot) const { return indexOfSlot_[slot] < dynamicCount_; }
