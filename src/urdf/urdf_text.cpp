@@ -60,6 +60,28 @@ int nestingDepth(const std::string& xml) {
 
 std::string quoted(const char* text) { return quotedName(text ? text : ""); }
 
+// The offset of the first byte that does not start a well-formed UTF-8 sequence, or npos.
+// TinyXML (which urdfdom parses with too) takes a lead byte's word for how many bytes follow:
+// a text ending in a lead byte made it read past the end of the buffer (the URDF fuzzer,
+// 2026-11-26).
+size_t invalidUtf8At(const std::string& text) {
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const size_t follow = c < 0x80                   ? 0
+                          : (c >= 0xC2 && c <= 0xDF) ? 1
+                          : (c >= 0xE0 && c <= 0xEF) ? 2
+                          : (c >= 0xF0 && c <= 0xF4) ? 3
+                                                     : 4;  // never a lead byte
+    if (follow == 4 || text.size() - i <= follow) return i;
+    for (size_t k = 1; k <= follow; ++k) {
+      const unsigned char next = static_cast<unsigned char>(text[i + k]);
+      if (next < 0x80 || next > 0xBF) return i;
+    }
+    i += follow + 1;
+  }
+  return std::string::npos;
+}
+
 // urdfdom links a joint's child into its parent's child list before it looks for loops, so a
 // loop of joints becomes a shared_ptr cycle that leaks even when urdfdom refuses the model.
 // Refused here first. Bad XML is left to urdfdom, which words it.
@@ -117,6 +139,11 @@ urdf::ModelInterfaceSharedPtr parseUrdfText(const std::string& xml, std::string*
   }
   if (xml.find('\0') != std::string::npos) {
     *error = "urdf_xml: contains a NUL byte";
+    return nullptr;
+  }
+  if (const size_t at = invalidUtf8At(xml); at != std::string::npos) {
+    *error =
+        "urdf_xml: not valid UTF-8 at byte " + std::to_string(at) + " (URDF text must be UTF-8)";
     return nullptr;
   }
   if (nestingDepth(xml) > kMaxNesting) {

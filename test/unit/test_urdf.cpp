@@ -416,6 +416,15 @@ TEST(Urdf, RefusalsNameTheElement) {
             std::string(kBoxLink)));
   EXPECT_TRUE(contains(fromWorld, "joint 'pin'")) << fromWorld;
 
+  // Text that is not UTF-8 is refused before any XML parser sees it: TinyXML read past the end
+  // of a text ending in a lead byte (found by the URDF fuzzer; under ASan that crashed).
+  const std::string cutShort = refusal(robot(std::string(kBoxLink)) + "\xe1");
+  EXPECT_TRUE(contains(cutShort, "not valid UTF-8 at byte")) << cutShort;
+  const std::string stray = refusal(robot("<link name=\"b\xe9se\"/>"));
+  EXPECT_TRUE(contains(stray, "not valid UTF-8")) << stray;
+  const std::string utf8 = refusal(robot("<link name=\"b\xc3\xa9se\"/>"));
+  EXPECT_FALSE(contains(utf8, "UTF-8")) << utf8;  // well-formed: refused for other reasons
+
   std::string deep;
   for (int i = 0; i < 100000; ++i) deep += "<a>";
   EXPECT_TRUE(contains(refusal(robot(deep)), "nested deeper")) << "deep nesting";
