@@ -127,7 +127,7 @@ struct Run {
     def.type = type;
     def.name = name;
     def.body = "robot";
-    def.diffDrive.cmdTimeout = 0.0;
+    def.drive.cmdTimeout = 0.0;
     return def;
   }
   void step() {

@@ -26,8 +26,8 @@ inline const char* deviceTypeName(DeviceType type) {
 }
 
 /// A body driven like a differential-drive robot: forward speed along its x axis and turn rate,
-/// reached through forces within traction limits (devices.hpp, DiffDrive, says how).
-struct DiffDriveDef {
+/// reached through forces within traction limits (drive.hpp, Drive, says how).
+struct DriveDef {
   std::string cmdVelTopic = "cmd_vel";  ///< geometry_msgs/Twist: linear.x (m/s), angular.z (rad/s)
   std::string odomTopic = "odom";       ///< nav_msgs/Odometry
   std::string odomFrame = "odom";       ///< tf odom_frame -> body
@@ -76,7 +76,7 @@ struct DeviceDef {
   DeviceType type = DeviceType::DiffDrive;
   std::string name;  ///< unique among the world's devices
   std::string body;  ///< the body it is attached to, by name
-  DiffDriveDef diffDrive;
+  DriveDef drive;
   LaserDef laser;
   BumperDef bumper;
 };

@@ -4,7 +4,7 @@
 
 #include <impulse2d/bumper.hpp>
 #include <impulse2d/device_defs.hpp>
-#include <impulse2d/diff_drive.hpp>
+#include <impulse2d/drive.hpp>
 #include <impulse2d/laser.hpp>
 #include <impulse2d/world.hpp>
 
@@ -21,7 +21,7 @@ struct Device {
   DeviceDef def;
   BodyId body;
   uint64_t id = 0;  ///< unique over the set's life
-  std::unique_ptr<DiffDrive> drive;
+  std::unique_ptr<Drive> drive;
   std::unique_ptr<Laser> laser;
   std::unique_ptr<ScanSchedule> schedule;  ///< lasers
   std::unique_ptr<Bumper> bumper;

@@ -17,8 +17,8 @@ std::string describe(size_t index, const DeviceDef& def) {
 std::vector<std::pair<std::string, const char*>> topicsOf(const DeviceDef& def) {
   switch (def.type) {
     case DeviceType::DiffDrive:
-      return {{def.diffDrive.cmdVelTopic, "cmd_vel_topic"},
-              {def.diffDrive.odomTopic, "odom_topic"}};
+      return {{def.drive.cmdVelTopic, "cmd_vel_topic"},
+              {def.drive.odomTopic, "odom_topic"}};
     case DeviceType::Laser:
       return {{def.laser.topic, "topic"}};
     case DeviceType::Bumper:
@@ -54,8 +54,8 @@ std::string DeviceSet::check(const std::vector<DeviceDef>& defs, const DeviceCon
     if (def.type != DeviceType::DiffDrive) return "";
     clash = claim(drivenBodies, def.body, holder);
     if (!clash.empty()) return "body: '" + def.body + "' is already driven by " + clash;
-    if (!def.diffDrive.publishTf) return "";
-    const std::string& frame = def.diffDrive.odomFrame;
+    if (!def.drive.publishTf) return "";
+    const std::string& frame = def.drive.odomFrame;
     if (frame == world.worldFrame)
       return "odom_frame: must differ from the world frame '" + frame + "'";
     if (frame == def.body) return "odom_frame: must differ from the body's own frame";
@@ -92,7 +92,7 @@ bool DeviceSet::add(const std::vector<DeviceDef>& defs, const World& world,
     device.id = nextId_++;
     switch (def.type) {
       case DeviceType::DiffDrive:
-        device.drive = std::make_unique<DiffDrive>(def.diffDrive, device.body, world);
+        device.drive = std::make_unique<Drive>(def.drive, device.body, world);
         break;
       case DeviceType::Laser:
         device.laser = std::make_unique<Laser>(

@@ -12,7 +12,7 @@ namespace {
 std::string signatureOf(const DeviceDef& d) {
   switch (d.type) {
     case DeviceType::DiffDrive:
-      return "diff_drive " + d.diffDrive.cmdVelTopic + " " + d.diffDrive.odomTopic;
+      return "diff_drive " + d.drive.cmdVelTopic + " " + d.drive.odomTopic;
     case DeviceType::Laser:
       return "laser " + d.laser.topic;
     case DeviceType::Bumper:
@@ -33,11 +33,11 @@ std::shared_ptr<DeviceEndpoints::Endpoint> DeviceEndpoints::open(const DeviceDef
   endpoint->signature = signatureOf(device);
   switch (device.type) {
     case DeviceType::DiffDrive: {
-      endpoint->publisher = pnh_.advertise<nav_msgs::Odometry>(device.diffDrive.odomTopic, 10);
+      endpoint->publisher = pnh_.advertise<nav_msgs::Odometry>(device.drive.odomTopic, 10);
       const std::string name = device.name;
       CmdVelHandler handler = onCmdVel_;
       endpoint->cmdVel = pnh_.subscribe<geometry_msgs::Twist>(
-          device.diffDrive.cmdVelTopic, 10,
+          device.drive.cmdVelTopic, 10,
           boost::function<void(const geometry_msgs::Twist::ConstPtr&)>(
               [handler, name](const geometry_msgs::Twist::ConstPtr& msg) { handler(name, *msg); }));
       break;

@@ -108,7 +108,7 @@ struct FixedFrame {
 struct OdometryReading {
   std::string device;
   std::string body;
-  DiffDriveDef def;
+  DriveDef def;
   Vec2 position = Vec2::Zero();  ///< the odometry, in the odom frame
   double angle = 0.0;
   double speed = 0.0;                ///< m/s along the body's x

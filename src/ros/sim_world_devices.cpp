@@ -88,7 +88,7 @@ std::vector<OdometryReading> SimWorld::odometry() const {
     OdometryReading r;
     r.device = device.def.name;
     r.body = body.name;
-    r.def = device.def.diffDrive;
+    r.def = device.def.drive;
     r.position = device.drive->odometry().position;
     r.angle = device.drive->odometry().angle;
     r.speed = device.drive->speed();

@@ -89,8 +89,8 @@ Eigen::Vector3d variances(const Fields& f, const char* key, const Vec2& xy, doub
   return v;
 }
 
-DiffDriveDef parseDiffDrive(const Fields& f) {
-  DiffDriveDef d;
+DriveDef parseDiffDrive(const Fields& f) {
+  DriveDef d;
   d.cmdVelTopic = topic(f, "cmd_vel_topic", d.cmdVelTopic);
   d.odomTopic = topic(f, "odom_topic", d.odomTopic);
   if (d.odomTopic == d.cmdVelTopic)
@@ -195,7 +195,7 @@ DeviceDef parseDevice(const YAML::Node& node) {
   def.body = f.name("body");
   switch (type) {
     case DeviceType::DiffDrive:
-      def.diffDrive = parseDiffDrive(f);
+      def.drive = parseDiffDrive(f);
       break;
     case DeviceType::Laser:
       def.laser = parseLaser(f);

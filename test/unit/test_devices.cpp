@@ -78,13 +78,13 @@ TEST(DeviceSet, RefusesClashesNamingTheDeviceAndKey) {
   DeviceDef reserved = device(DeviceType::Bumper, "bump", "other");
   reserved.bumper.topic = "contacts";
   DeviceDef secondDrive = device(DeviceType::DiffDrive, "drive2", "robot");
-  secondDrive.diffDrive.cmdVelTopic = "cmd_vel2";
-  secondDrive.diffDrive.odomTopic = "odom2";
+  secondDrive.drive.cmdVelTopic = "cmd_vel2";
+  secondDrive.drive.odomTopic = "odom2";
   DeviceDef sameOdomFrame = device(DeviceType::DiffDrive, "drive2", "other");
-  sameOdomFrame.diffDrive.cmdVelTopic = "cmd_vel2";
-  sameOdomFrame.diffDrive.odomTopic = "odom2";
+  sameOdomFrame.drive.cmdVelTopic = "cmd_vel2";
+  sameOdomFrame.drive.odomTopic = "odom2";
   DeviceDef worldOdomFrame = sameOdomFrame;
-  worldOdomFrame.diffDrive.odomFrame = "world";
+  worldOdomFrame.drive.odomFrame = "world";
   const Case cases[] = {
       {device(DeviceType::Bumper, "laser", "other"),
        "devices[0] 'laser': name: already used by the device 'laser'"},
@@ -179,7 +179,7 @@ devices:
                          &scene, &error))
       << error;
   ASSERT_EQ(scene.devices.size(), 3u);
-  const DiffDriveDef& d = scene.devices[0].diffDrive;
+  const DriveDef& d = scene.devices[0].drive;
   EXPECT_EQ(d.cmdVelTopic, "/robot/cmd_vel");
   EXPECT_EQ(d.odomFrame, "robot_odom");
   EXPECT_FALSE(d.publishTf);
@@ -214,11 +214,11 @@ devices:
                  "body: r}, {type: bumper, name: b, body: r}]",
                  &scene, &error))
       << error;
-  const DiffDriveDef dd;
-  EXPECT_EQ(scene.devices[0].diffDrive.cmdVelTopic, dd.cmdVelTopic);
-  EXPECT_EQ(scene.devices[0].diffDrive.maxLinearAccel, dd.maxLinearAccel);
-  EXPECT_EQ(scene.devices[0].diffDrive.cmdTimeout, dd.cmdTimeout);
-  EXPECT_TRUE(scene.devices[0].diffDrive.publishTf);
+  const DriveDef dd;
+  EXPECT_EQ(scene.devices[0].drive.cmdVelTopic, dd.cmdVelTopic);
+  EXPECT_EQ(scene.devices[0].drive.maxLinearAccel, dd.maxLinearAccel);
+  EXPECT_EQ(scene.devices[0].drive.cmdTimeout, dd.cmdTimeout);
+  EXPECT_TRUE(scene.devices[0].drive.publishTf);
   EXPECT_EQ(scene.devices[1].laser.offset, LaserDef().offset);
   EXPECT_EQ(scene.devices[1].laser.angleIncrement, LaserDef().angleIncrement);
   EXPECT_FALSE(scene.devices[1].laser.hasSeed);

@@ -1,5 +1,5 @@
-// The differential drive (diff_drive.hpp): ramps, forces and odometry.
-#include <impulse2d/diff_drive.hpp>
+// The differential drive (drive.hpp): ramps, forces and odometry.
+#include <impulse2d/drive.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -31,14 +31,14 @@ Pose2 integrateArc(const Pose2& pose, double v, double w, double dt) {
   return out;
 }
 
-DiffDrive::DiffDrive(const DiffDriveDef& def, BodyId body, const World& world)
+Drive::Drive(const DriveDef& def, BodyId body, const World& world)
     : def_(def), body_(body) {
   const Body& b = world.body(body);
   if (!(def_.maxForce > 0.0)) def_.maxForce = b.mass * kStandardGravity;
   if (!(def_.maxTorque > 0.0)) def_.maxTorque = def_.maxForce * b.maxExtent;
 }
 
-void DiffDrive::command(double v, double w, double now) {
+void Drive::command(double v, double w, double now) {
   if (!std::isfinite(v) || !std::isfinite(w)) return;
   commandV_ = v;
   commandW_ = w;
@@ -46,11 +46,11 @@ void DiffDrive::command(double v, double w, double now) {
   hasCommand_ = true;
 }
 
-bool DiffDrive::timedOut(double now) const {
+bool Drive::timedOut(double now) const {
   return hasCommand_ && def_.cmdTimeout > 0.0 && now - commandTime_ > def_.cmdTimeout;
 }
 
-void DiffDrive::beforeStep(World& world, double now) {
+void Drive::beforeStep(World& world, double now) {
   const double dt = world.settings().timeStep;
   const bool live = hasCommand_ && !timedOut(now);
   startSpeed_ = speed_;
@@ -87,7 +87,7 @@ void DiffDrive::beforeStep(World& world, double now) {
   world.applyTorque(body_, torque);
 }
 
-void DiffDrive::afterStep(double dt) {
+void Drive::afterStep(double dt) {
   odometry_ =
       integrateArc(odometry_, 0.5 * (startSpeed_ + speed_), 0.5 * (startTurnRate_ + turnRate_), dt);
 }

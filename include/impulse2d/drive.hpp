@@ -43,12 +43,12 @@ Pose2 integrateArc(const Pose2& pose, double v, double w, double dt);
 /// The wheel speeds change linearly through a step, as a ramp does; after the step the odometry
 /// integrates their mean over it (integrateArc). Its frame is the body's pose when the drive was
 /// created.
-class DiffDrive {
+class Drive {
  public:
   /// `def.maxForce` and `def.maxTorque` <= 0 are resolved from the body (device_defs.hpp).
-  DiffDrive(const DiffDriveDef& def, BodyId body, const World& world);
+  Drive(const DriveDef& def, BodyId body, const World& world);
 
-  const DiffDriveDef& def() const { return def_; }
+  const DriveDef& def() const { return def_; }
   BodyId body() const { return body_; }
 
   /// A command at simulated time `now`: v m/s along the body's x axis, w rad/s counter-clockwise.
@@ -68,7 +68,7 @@ class DiffDrive {
   double turnRate() const { return turnRate_; }
 
  private:
-  DiffDriveDef def_;
+  DriveDef def_;
   BodyId body_;
   double commandV_ = 0.0, commandW_ = 0.0;
   bool hasCommand_ = false;

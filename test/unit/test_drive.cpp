@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <impulse2d/diff_drive.hpp>
+#include <impulse2d/drive.hpp>
 
 #include "test_scenes.hpp"
 
@@ -46,10 +46,10 @@ TEST(Odometry, StraightLinesAndArcs) {
 struct DriveWorld {
   World world;
   BodyId robot;
-  DiffDrive drive;
+  Drive drive;
   double now = 0.0;
 
-  explicit DriveWorld(const DiffDriveDef& def = DiffDriveDef(), const Vec2& gravity = Vec2::Zero())
+  explicit DriveWorld(const DriveDef& def = DriveDef(), const Vec2& gravity = Vec2::Zero())
       : world(settings(gravity)),
         robot(test::addCircle(world, "robot", Vec2::Zero(), 0.25, BodyType::Dynamic,
                               10.0 / (kPi * 0.25 * 0.25))),
@@ -72,7 +72,7 @@ struct DriveWorld {
   const Body& body() const { return world.body(robot); }
 };
 
-TEST(DiffDrive, HalfAMetrePerSecondForTwoSecondsThenZeroMovesOneMetre) {
+TEST(Drive, HalfAMetrePerSecondForTwoSecondsThenZeroMovesOneMetre) {
   DriveWorld w;
   EXPECT_NEAR(w.body().mass, 10.0, 1e-12);
   for (int i = 0; i < 200; ++i) {
@@ -91,7 +91,7 @@ TEST(DiffDrive, HalfAMetrePerSecondForTwoSecondsThenZeroMovesOneMetre) {
   EXPECT_EQ(w.drive.speed(), 0.0);
 }
 
-TEST(DiffDrive, TurningFollowsTheOdometrysArc) {
+TEST(Drive, TurningFollowsTheOdometrysArc) {
   DriveWorld w;
   for (int i = 0; i < 400; ++i) {
     w.drive.command(0.5, 0.8, w.now);
@@ -109,8 +109,8 @@ TEST(DiffDrive, TurningFollowsTheOdometrysArc) {
   EXPECT_GT(odom.position.norm(), 1.0);  // it went somewhere: half a circle of 0.625 m radius
 }
 
-TEST(DiffDrive, StopsWhenCommandsStopComing) {
-  DiffDriveDef def;
+TEST(Drive, StopsWhenCommandsStopComing) {
+  DriveDef def;
   def.cmdTimeout = 0.5;
   DriveWorld w(def);
   w.drive.command(0.5, 0.0, 0.0);  // one command, never repeated
@@ -124,7 +124,7 @@ TEST(DiffDrive, StopsWhenCommandsStopComing) {
   // Up in 0.25 s, on until 0.5 s, down in 0.25 s: 0.0625 + 0.125 + 0.0625 m, a step either way.
   EXPECT_NEAR(w.body().xf.p.x(), 0.25, 0.006);
   // A timeout of 0 never stops it.
-  DiffDriveDef forever;
+  DriveDef forever;
   forever.cmdTimeout = 0.0;
   DriveWorld v(forever);
   v.drive.command(0.5, 0.0, 0.0);
@@ -132,8 +132,8 @@ TEST(DiffDrive, StopsWhenCommandsStopComing) {
   EXPECT_DOUBLE_EQ(v.drive.speed(), 0.5);
 }
 
-TEST(DiffDrive, BlockedByAWallItPushesWithMaxForceAndTheOdometryRunsOn) {
-  DiffDriveDef def;
+TEST(Drive, BlockedByAWallItPushesWithMaxForceAndTheOdometryRunsOn) {
+  DriveDef def;
   def.cmdTimeout = 0.0;
   DriveWorld w(def);
   // A wall whose face is 0.5 m ahead of the robot's front.
@@ -150,7 +150,7 @@ TEST(DiffDrive, BlockedByAWallItPushesWithMaxForceAndTheOdometryRunsOn) {
   EXPECT_NEAR(impulse / kDt, 10.0 * 9.81, 0.5);
 }
 
-TEST(DiffDrive, HoldsAgainstAppliedForcesWithinMaxForceAndGivesWayBeyond) {
+TEST(Drive, HoldsAgainstAppliedForcesWithinMaxForceAndGivesWayBeyond) {
   DriveWorld hold;
   for (int i = 0; i < 100; ++i) {
     hold.world.applyForce(hold.robot, Vec2(0.0, 0.5 * 98.1), hold.body().center);
@@ -167,16 +167,16 @@ TEST(DiffDrive, HoldsAgainstAppliedForcesWithinMaxForceAndGivesWayBeyond) {
   EXPECT_NEAR(pushed.body().linearVelocity.x(), 0.0, 1e-12);
 }
 
-TEST(DiffDrive, OnASlopeItHoldsWhileMaxForceAllowsThenSlides) {
+TEST(Drive, OnASlopeItHoldsWhileMaxForceAllowsThenSlides) {
   // A floor tilted so that 2 m/s^2 of gravity pulls along -y, across the robot's heading.
-  DriveWorld gentle(DiffDriveDef(), Vec2(0.0, -2.0));
+  DriveWorld gentle(DriveDef(), Vec2(0.0, -2.0));
   gentle.drive.command(0.5, 0.0, 0.0);
   gentle.step(40);
   EXPECT_NEAR(gentle.body().linearVelocity.x(), 0.5, 1e-9);
   EXPECT_NEAR(gentle.body().linearVelocity.y(), 0.0, 1e-9);
   // A traction limit below the pull: the body slides down at (20 - 15) N / 10 kg = 0.5 m/s^2,
   // and the odometry does not see it.
-  DiffDriveDef weak;
+  DriveDef weak;
   weak.maxForce = 15.0;
   DriveWorld steep(weak, Vec2(0.0, -2.0));
   steep.step(100);
@@ -184,7 +184,7 @@ TEST(DiffDrive, OnASlopeItHoldsWhileMaxForceAllowsThenSlides) {
   EXPECT_EQ(steep.drive.odometry().position.norm(), 0.0);
 }
 
-TEST(DiffDrive, IgnoresNonFiniteCommandsAndLetsARestingBodySleep) {
+TEST(Drive, IgnoresNonFiniteCommandsAndLetsARestingBodySleep) {
   DriveWorld w;
   w.drive.command(NAN, 0.0, 0.0);
   w.drive.command(0.0, INFINITY, 0.0);
