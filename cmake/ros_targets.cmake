@@ -59,6 +59,14 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(impulse2d_robot_tests ${catkin_LIBRARIES})
   add_dependencies(impulse2d_robot_tests impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
 
+  # The other devices (omni, ackermann, imu, mounted lasers), as node and as nodelet.
+  add_rostest_gtest(impulse2d_devices_tests test/ros/devices.test test/ros/devices_test.cpp
+    test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
+  target_link_libraries(impulse2d_devices_tests ${catkin_LIBRARIES} Eigen3::Eigen)
+  add_dependencies(impulse2d_devices_tests impulse2d_node impulse2d_nodelet
+    ${PROJECT_NAME}_generate_messages_cpp)
+  add_rostest(test/ros/devices_nodelet.test DEPENDENCIES impulse2d_devices_tests)
+
   roslaunch_add_file_check(launch/world.launch)
   roslaunch_add_file_check(launch/robot_demo.launch rviz:=false)
   roslaunch_add_file_check(launch/demo.launch rviz:=false)

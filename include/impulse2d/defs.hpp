@@ -174,6 +174,7 @@ struct ShapeDef {
   double density = 1.0;        ///< kg/m^2
   double friction = 0.6;
   double restitution = 0.0;
+  double reflectance = 0.0;  ///< a laser's intensity of a hit on this shape, >= 0
   CollisionFilter filter;
 };
 

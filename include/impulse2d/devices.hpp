@@ -5,6 +5,7 @@
 #include <impulse2d/bumper.hpp>
 #include <impulse2d/device_defs.hpp>
 #include <impulse2d/drive.hpp>
+#include <impulse2d/imu.hpp>
 #include <impulse2d/laser.hpp>
 #include <impulse2d/world.hpp>
 
@@ -20,17 +21,20 @@ namespace impulse2d {
 struct Device {
   DeviceDef def;
   BodyId body;
-  uint64_t id = 0;  ///< unique over the set's life
-  std::unique_ptr<Drive> drive;
+  uint64_t id = 0;               ///< unique over the set's life
+  std::unique_ptr<Drive> drive;  ///< diff_drive, omni, ackermann
   std::unique_ptr<Laser> laser;
-  std::unique_ptr<ScanSchedule> schedule;  ///< lasers
+  std::unique_ptr<ScanSchedule> schedule;  ///< lasers and IMUs: when a reading falls due
   std::unique_ptr<Bumper> bumper;
-  /// Lasers and bumpers run only while someone reads them (the node sets this from its
+  std::unique_ptr<Imu> imu;
+  /// Lasers, bumpers and IMUs report only while someone reads them (the node sets this from its
   /// subscribers); drives always run, they are part of the physics.
   bool active = false;
-  bool fresh = false;         ///< afterStep took a reading: a scan, or a bumper's change
+  bool fresh = false;         ///< afterStep took a reading: a scan, an IMU's, a bumper's change
   double readingTime = 0.0;   ///< s of simulated time of that reading
   std::vector<float> ranges;  ///< lasers: the last scan
+  std::vector<float> intensities;  ///< lasers: the last scan's, beam by beam
+  ImuSample imuReading;            ///< IMUs: the last reading
 };
 
 /// What the world around the devices is: the set checks new devices against it.
@@ -47,7 +51,8 @@ struct DeviceContext {
 class DeviceSet {
  public:
   /// Empty when `defs` can join the devices here: at most kMaxDevices in all; names unique; every
-  /// topic used by one device only and not reserved; drives only in plane xy, one per body, and
+  /// topic used by one device only and not reserved; drives and IMUs only in plane xy; drives one
+  /// per body, and
   /// with publish_tf each odom frame its own, neither the world frame nor its body's name.
   /// Otherwise one line naming the device and key, e.g.
   ///   "devices[1] 'scan2': topic: 'scan' is already used by the device 'laser'".
@@ -63,8 +68,8 @@ class DeviceSet {
 
   /// Before the world steps from time `now` (s): the drives push.
   void beforeStep(World& world, double now);
-  /// After the step that ended at `now`: odometry; the due scans and the bumpers of active
-  /// devices, marked `fresh`.
+  /// After the step that ended at `now`: odometry, the IMUs follow their bodies; the due scans
+  /// and IMU readings and the bumpers of active devices, marked `fresh`.
   void afterStep(const World& world, double now);
 
   std::vector<Device>& devices() { return devices_; }

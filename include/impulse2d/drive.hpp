@@ -1,6 +1,7 @@
-// The differential drive's model: wheel speeds ramped towards the command, the forces that move
-// the body at those speeds through the physics, and odometry integrated from the wheel speeds as
-// encoders measure them. ROS-free; the node feeds it cmd_vel and publishes what it reads.
+// The drives' model (diff_drive, omni, ackermann): wheel speeds ramped towards the command, the
+// forces that move the body at those speeds through the physics, and odometry integrated from
+// the wheel speeds as encoders measure them. ROS-free; the node feeds it cmd_vel and publishes
+// what it reads.
 #pragma once
 
 #include <impulse2d/device_defs.hpp>
@@ -10,6 +11,8 @@ namespace impulse2d {
 
 /// `current` moved towards `target` by at most maxRate * dt.
 double rampTowards(double current, double target, double maxRate, double dt);
+/// `current` moved towards `target` by at most maxRate * dt in length.
+Vec2 rampTowards(const Vec2& current, const Vec2& target, double maxRate, double dt);
 
 /// A pose in the plane.
 struct Pose2 {
@@ -23,16 +26,31 @@ struct Pose2 {
 ///
 /// and, for turns under 1e-6 rad a step, the chord along the mid-step heading.
 Pose2 integrateArc(const Pose2& pose, double v, double w, double dt);
+/// The same for a velocity `v` in the body frame (forward, sideways): the integral of R(a) v
+/// over the turn, (R(a + w dt - pi/2) - R(a - pi/2)) v / w.
+Pose2 integrateArc(const Pose2& pose, const Vec2& v, double w, double dt);
 
-/// A dynamic body driven like a differential-drive robot (top-down worlds, plane xy).
+/// The steering angle (rad) at which a car of wheelbase L (m) turns at rate w (rad/s) when its
+/// rear axle moves at v (m/s): atan(w L / v), the bicycle model's w = v tan(angle) / L; within
+/// +-maxAngle. At v = 0 no angle gives a turn: `current` is kept.
+double steeringFor(double v, double w, double wheelbase, double maxAngle, double current);
+
+/// A dynamic body driven like a wheeled robot (top-down worlds, plane xy). The type says how:
+///   - diff_drive: forward speed v and turn rate w, no sideways slip;
+///   - omni (holonomic): forward and sideways speed and turn rate, each its own;
+///   - ackermann (car-like, the body's origin at the rear axle's middle): forward speed v of the
+///     rear axle, no sideways slip there, and the turn rate w = v tan(steering) / wheelbase of a
+///     steering angle that turns towards the one the command's turn rate asks for
+///     (steeringFor) at steering_rate, never beyond max_steering_angle. So the tightest turn has
+///     radius wheelbase / tan(max_steering_angle), and a car at rest cannot turn.
 ///
-/// Each step, before the world steps: the wheel speeds (v forward, w turning) move towards the
-/// command at most max_linear_accel and max_angular_accel; a command older than cmd_timeout
-/// counts as zero. The drive then applies the force and torque that give the body exactly those
-/// speeds at the end of the step if nothing else acts: forward along the heading half a step
-/// ahead (so the chords follow the odometry's arc), no sideways slip, with gravity, damping and
-/// the forces already applied for the step (World::applyForce, the node's wrenches) made up for.
-/// They are capped at max_force (forward and sideways together) and max_torque, so
+/// Each step, before the world steps: the wheel speeds move towards the command at most
+/// max_linear_accel (forward and sideways together) and max_angular_accel (diff_drive, omni); a
+/// command older than cmd_timeout counts as zero. The drive then applies the force and torque
+/// that give the body exactly those speeds at the end of the step if nothing else acts: along
+/// the heading half a step ahead (so the chords follow the odometry's arc), with gravity, damping
+/// and the forces already applied for the step (World::applyForce, the node's wrenches) made up
+/// for. They are capped at max_force (forward and sideways together) and max_torque, so
 ///   - blocked (a wall, a heavy crate): the body pushes with max_force and stays; the wheels keep
 ///     turning, so the odometry runs on and drifts from the ground truth;
 ///   - pushed by a body, which the drive learns of only from the speed it lost: it gives way at
@@ -46,14 +64,19 @@ Pose2 integrateArc(const Pose2& pose, double v, double w, double dt);
 class Drive {
  public:
   /// `def.maxForce` and `def.maxTorque` <= 0 are resolved from the body (device_defs.hpp).
-  Drive(const DriveDef& def, BodyId body, const World& world);
+  /// `type` is one of diff_drive, omni and ackermann.
+  Drive(const DriveDef& def, BodyId body, const World& world,
+        DeviceType type = DeviceType::DiffDrive);
 
   const DriveDef& def() const { return def_; }
+  DeviceType type() const { return type_; }
   BodyId body() const { return body_; }
 
-  /// A command at simulated time `now`: v m/s along the body's x axis, w rad/s counter-clockwise.
-  /// Non-finite values are ignored (the caller reports them).
-  void command(double v, double w, double now);
+  /// A command at simulated time `now`: vx m/s along the body's x axis, vy m/s along its y axis
+  /// (omni; the other drives ignore it), w rad/s counter-clockwise. Non-finite values are ignored
+  /// (the caller reports them).
+  void command(double vx, double vy, double w, double now);
+  void command(double v, double w, double now) { command(v, 0.0, w, now); }
   /// Whether the last command (if any) is older than cmd_timeout at `now`.
   bool timedOut(double now) const;
 
@@ -62,19 +85,29 @@ class Drive {
   /// After the world stepped dt.
   void afterStep(double dt);
 
-  /// The odometry: the pose in the odom frame and the twist (v, w) in the body frame.
+  /// The odometry: the pose in the odom frame and the twist (forward, sideways, turn) in the body
+  /// frame.
   const Pose2& odometry() const { return odometry_; }
   double speed() const { return speed_; }
+  double sideSpeed() const { return sideSpeed_; }
   double turnRate() const { return turnRate_; }
+  /// ackermann: the steering angle now (rad, counter-clockwise), 0 for the other drives.
+  double steeringAngle() const { return steering_; }
 
  private:
+  // The target speeds of this step: forward, sideways and turning.
+  void rampSpeeds(bool live, double dt);
+
   DriveDef def_;
+  DeviceType type_;
   BodyId body_;
-  double commandV_ = 0.0, commandW_ = 0.0;
+  double commandVx_ = 0.0, commandVy_ = 0.0, commandW_ = 0.0;
   bool hasCommand_ = false;
   double commandTime_ = 0.0;
-  double startSpeed_ = 0.0, startTurnRate_ = 0.0;  // the wheels' speeds as the step began
-  double speed_ = 0.0, turnRate_ = 0.0;            // and as it ends
+  // The wheels' speeds as the step began, and as it ends.
+  double startSpeed_ = 0.0, startSideSpeed_ = 0.0, startTurnRate_ = 0.0;
+  double speed_ = 0.0, sideSpeed_ = 0.0, turnRate_ = 0.0;
+  double steering_ = 0.0;
   Pose2 odometry_;
 };
 

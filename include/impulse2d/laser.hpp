@@ -13,7 +13,8 @@
 namespace impulse2d {
 
 /// Beams from angle_min in steps of angle_increment up to angle_max (within 1e-9 rad of it), as
-/// sensor_msgs/LaserScan counts them: floor((max - min) / increment) + 1.
+/// sensor_msgs/LaserScan counts them: floor((max - min) / increment) + 1. A negative increment
+/// (with angle_max <= angle_min) sweeps clockwise.
 int laserBeamCount(const LaserDef& def);
 
 /// A hit `distance` m away (or none) as a LaserScan range, by REP 117: nearer than range_min
@@ -57,8 +58,11 @@ class Laser {
   BodyId body() const { return body_; }
   int beamCount() const { return static_cast<int>(directions_.size()); }
 
-  /// Ranges (m) of every beam, REP 117 as laserRange; its own body is not seen.
-  void scan(const World& world, std::vector<float>* ranges);
+  /// Ranges (m) of every beam, REP 117 as laserRange, and the intensity of each: the reflectance
+  /// of the shape it hit, 0 where it hit nothing within range. Its own body is not seen.
+  void scan(const World& world, std::vector<float>* ranges, std::vector<float>* intensities);
+  /// The ranges only.
+  void scan(const World& world, std::vector<float>* ranges) { scan(world, ranges, &unread_); }
 
  private:
   LaserDef def_;
@@ -67,6 +71,7 @@ class Laser {
   GaussianNoise noise_;
   std::vector<Vec2> ends_;  // reused: no allocation once warm
   std::vector<RayHit> hits_;
+  std::vector<float> unread_;  // intensities nobody asked for
   RayFilter filter_;
 };
 

@@ -49,6 +49,7 @@ struct Shape {
   double density = 1.0;      ///< kg/m^2
   double friction = 0.6;     ///< Coulomb coefficient
   double restitution = 0.0;  ///< 0 = no bounce, 1 = elastic
+  double reflectance = 0.0;  ///< what a laser reads as the intensity of a hit, >= 0
   CollisionFilter filter;
 };
 

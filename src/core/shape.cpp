@@ -114,11 +114,15 @@ std::string makeShape(const ShapeDef& def, Shape* out) {
   if (!std::isfinite(def.restitution) || def.restitution < 0.0 || def.restitution > 1.0) {
     return "restitution: must be in [0, 1]";
   }
+  if (!std::isfinite(def.reflectance) || def.reflectance < 0.0 || def.reflectance > 1e6) {
+    return "reflectance: must be finite, >= 0 and at most 1e6";
+  }
   const Transform xf(def.offset, Rot(def.angle));
   Shape shape;
   shape.density = def.density;
   shape.friction = def.friction;
   shape.restitution = def.restitution;
+  shape.reflectance = def.reflectance;
   shape.filter = def.filter;
   switch (def.kind) {
     case ShapeKind::Box:

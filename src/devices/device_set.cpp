@@ -17,12 +17,15 @@ std::string describe(size_t index, const DeviceDef& def) {
 std::vector<std::pair<std::string, const char*>> topicsOf(const DeviceDef& def) {
   switch (def.type) {
     case DeviceType::DiffDrive:
-      return {{def.drive.cmdVelTopic, "cmd_vel_topic"},
-              {def.drive.odomTopic, "odom_topic"}};
+    case DeviceType::Omni:
+    case DeviceType::Ackermann:
+      return {{def.drive.cmdVelTopic, "cmd_vel_topic"}, {def.drive.odomTopic, "odom_topic"}};
     case DeviceType::Laser:
       return {{def.laser.topic, "topic"}};
     case DeviceType::Bumper:
       return {{def.bumper.topic, "topic"}};
+    case DeviceType::Imu:
+      return {{def.imu.topic, "topic"}};
   }
   return {};
 }
@@ -51,7 +54,7 @@ std::string DeviceSet::check(const std::vector<DeviceDef>& defs, const DeviceCon
         return std::string(key) + ": '" + topic + "' is already used by " + clash;
       }
     }
-    if (def.type != DeviceType::DiffDrive) return "";
+    if (!isDrive(def.type)) return "";
     clash = claim(drivenBodies, def.body, holder);
     if (!clash.empty()) return "body: '" + def.body + "' is already driven by " + clash;
     if (!def.drive.publishTf) return "";
@@ -68,9 +71,14 @@ std::string DeviceSet::check(const std::vector<DeviceDef>& defs, const DeviceCon
   }
   for (size_t i = 0; i < defs.size(); ++i) {
     const DeviceDef& def = defs[i];
-    if (def.type == DeviceType::DiffDrive && world.plane != "xy") {
-      return describe(i, def) + ": type: a diff_drive drives on the floor of a top-down world " +
-             "(plane xy); this world's plane is " + world.plane;
+    if (isDrive(def.type) && world.plane != "xy") {
+      return describe(i, def) + ": type: " + deviceTypeWithArticle(def.type) +
+             " drives on the floor of a top-down world (plane xy); this world's plane is " +
+             world.plane;
+    }
+    if (def.type == DeviceType::Imu && world.plane != "xy") {
+      return describe(i, def) + ": type: an imu rides on the floor of a top-down world " +
+             "(plane xy), where z is up; this world's plane is " + world.plane;
     }
     const std::string why = registerDevice(def, describe(i, def));
     if (!why.empty()) return describe(i, def) + ": " + why;
@@ -90,17 +98,27 @@ bool DeviceSet::add(const std::vector<DeviceDef>& defs, const World& world,
     device.def = def;
     device.body = world.findBody(def.body);
     device.id = nextId_++;
+    const uint32_t seed = [&] {
+      if (def.type == DeviceType::Laser && def.laser.hasSeed) return def.laser.seed;
+      if (def.type == DeviceType::Imu && def.imu.hasSeed) return def.imu.seed;
+      return seedFromName(def.name);
+    }();
     switch (def.type) {
       case DeviceType::DiffDrive:
-        device.drive = std::make_unique<Drive>(def.drive, device.body, world);
+      case DeviceType::Omni:
+      case DeviceType::Ackermann:
+        device.drive = std::make_unique<Drive>(def.drive, device.body, world, def.type);
         break;
       case DeviceType::Laser:
-        device.laser = std::make_unique<Laser>(
-            def.laser, device.body, def.laser.hasSeed ? def.laser.seed : seedFromName(def.name));
+        device.laser = std::make_unique<Laser>(def.laser, device.body, seed);
         device.schedule = std::make_unique<ScanSchedule>(def.laser.updateRate, now);
         break;
       case DeviceType::Bumper:
         device.bumper = std::make_unique<Bumper>(def.bumper, device.body);
+        break;
+      case DeviceType::Imu:
+        device.imu = std::make_unique<Imu>(def.imu, device.body, seed, world);
+        device.schedule = std::make_unique<ScanSchedule>(def.imu.updateRate, now);
         break;
     }
     devices_.push_back(std::move(device));
@@ -135,7 +153,15 @@ void DeviceSet::afterStep(const World& world, double now) {
     if (device.laser) {
       // The schedule moves on whether or not anyone listens, so scans keep their phase.
       if (device.schedule->due(now) && device.active) {
-        device.laser->scan(world, &device.ranges);
+        device.laser->scan(world, &device.ranges, &device.intensities);
+        device.fresh = true;
+        device.readingTime = now;
+      }
+    }
+    if (device.imu) {
+      device.imu->follow(world);  // every step: the acceleration is over the last one
+      if (device.schedule->due(now) && device.active) {
+        device.imuReading = device.imu->read();
         device.fresh = true;
         device.readingTime = now;
       }

@@ -63,13 +63,15 @@ Laser::Laser(const LaserDef& def, BodyId body, uint32_t seed)
   directions_.reserve(count);
   for (int i = 0; i < count; ++i) {
     const double angle = def.angleMin + i * def.angleIncrement;
-    directions_.emplace_back(std::cos(angle), std::sin(angle));
+    // Upside down, the scan's y axis points the other way: beam angle a lies at -a.
+    directions_.emplace_back(std::cos(angle), def.flip ? -std::sin(angle) : std::sin(angle));
   }
   filter_.ignore.push_back(body);
 }
 
-void Laser::scan(const World& world, std::vector<float>* ranges) {
+void Laser::scan(const World& world, std::vector<float>* ranges, std::vector<float>* intensities) {
   ranges->assign(directions_.size(), std::numeric_limits<float>::infinity());
+  intensities->assign(directions_.size(), 0.0f);
   if (!world.isValid(body_)) return;
   const Transform sensor = [&] {
     const Transform& xf = world.body(body_).xf;
@@ -82,7 +84,12 @@ void Laser::scan(const World& world, std::vector<float>* ranges) {
   world.rayCastFan(sensor.p, ends_, filter_, &hits_);
   for (size_t i = 0; i < hits_.size(); ++i) {
     const double noise = def_.noiseStddev > 0.0 ? def_.noiseStddev * noise_.next() : 0.0;
-    (*ranges)[i] = laserRange(def_, hits_[i].hit(), hits_[i].fraction * def_.rangeMax, noise);
+    const float range = laserRange(def_, hits_[i].hit(), hits_[i].fraction * def_.rangeMax, noise);
+    (*ranges)[i] = range;
+    if (std::isfinite(range)) {
+      const Body& hit = world.body(hits_[i].body);
+      (*intensities)[i] = static_cast<float>(hit.shapes[hits_[i].shape].reflectance);
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 
 #include <impulse2d/ContactArray.h>
 #include <nav_msgs/Odometry.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/LaserScan.h>
 
 namespace impulse2d {
@@ -12,11 +13,16 @@ namespace {
 std::string signatureOf(const DeviceDef& d) {
   switch (d.type) {
     case DeviceType::DiffDrive:
-      return "diff_drive " + d.drive.cmdVelTopic + " " + d.drive.odomTopic;
+    case DeviceType::Omni:
+    case DeviceType::Ackermann:
+      return std::string(deviceTypeName(d.type)) + " " + d.drive.cmdVelTopic + " " +
+             d.drive.odomTopic;
     case DeviceType::Laser:
       return "laser " + d.laser.topic;
     case DeviceType::Bumper:
       return "bumper " + d.bumper.topic;
+    case DeviceType::Imu:
+      return "imu " + d.imu.topic;
   }
   return "";
 }
@@ -32,7 +38,9 @@ std::shared_ptr<DeviceEndpoints::Endpoint> DeviceEndpoints::open(const DeviceDef
   auto endpoint = std::make_shared<Endpoint>();
   endpoint->signature = signatureOf(device);
   switch (device.type) {
-    case DeviceType::DiffDrive: {
+    case DeviceType::DiffDrive:
+    case DeviceType::Omni:
+    case DeviceType::Ackermann: {
       endpoint->publisher = pnh_.advertise<nav_msgs::Odometry>(device.drive.odomTopic, 10);
       const std::string name = device.name;
       CmdVelHandler handler = onCmdVel_;
@@ -48,6 +56,9 @@ std::shared_ptr<DeviceEndpoints::Endpoint> DeviceEndpoints::open(const DeviceDef
     case DeviceType::Bumper:
       // Latched: it speaks only on change, so a late subscriber still learns the state.
       endpoint->publisher = pnh_.advertise<impulse2d::ContactArray>(device.bumper.topic, 10, true);
+      break;
+    case DeviceType::Imu:
+      endpoint->publisher = pnh_.advertise<sensor_msgs::Imu>(device.imu.topic, 10);
       break;
   }
   return endpoint;

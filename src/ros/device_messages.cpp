@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace impulse2d {
@@ -60,6 +61,7 @@ nav_msgs::Odometry toOdometry(Plane plane, const OdometryReading& odom, const ro
   msg.pose.covariance = covariance(plane, odom.def.poseVarianceXy, odom.def.poseVarianceTheta);
   msg.twist.twist.linear.x = odom.speed;  // the body's x is 3D x in both planes
   if (plane == Plane::XY) {
+    msg.twist.twist.linear.y = odom.sideSpeed;  // drives are top-down only
     msg.twist.twist.angular.z = odom.turnRate;
   } else {
     msg.twist.twist.angular.y = -odom.turnRate;  // about the xz plane's normal, -y
@@ -98,6 +100,30 @@ sensor_msgs::LaserScan toLaserScan(const ScanReading& scan, const ros::Time& sta
   msg.range_min = static_cast<float>(scan.def.rangeMin);
   msg.range_max = static_cast<float>(scan.def.rangeMax);
   msg.ranges = scan.ranges;
+  msg.intensities = scan.intensities;
+  return msg;
+}
+
+sensor_msgs::Imu toImu(const ImuReading& reading, const ros::Time& stamp) {
+  sensor_msgs::Imu msg;
+  msg.header.frame_id = reading.frame;
+  msg.header.stamp = stamp;
+  msg.orientation = toMsg(reading.orientation);
+  const Eigen::Vector3d& w = reading.angularVelocity;
+  msg.angular_velocity.x = w.x();
+  msg.angular_velocity.y = w.y();
+  msg.angular_velocity.z = w.z();
+  const Eigen::Vector3d& a = reading.linearAcceleration;
+  msg.linear_acceleration.x = a.x();
+  msg.linear_acceleration.y = a.y();
+  msg.linear_acceleration.z = a.z();
+  auto diagonal = [](const Eigen::Vector3d& stddev, boost::array<double, 9>* c) {
+    c->fill(0.0);
+    for (int i = 0; i < 3; ++i) (*c)[4 * i] = std::max(stddev[i] * stddev[i], kExactVariance);
+  };
+  diagonal(reading.def.orientationNoise, &msg.orientation_covariance);
+  diagonal(reading.def.angularVelocityNoise, &msg.angular_velocity_covariance);
+  diagonal(reading.def.linearAccelerationNoise, &msg.linear_acceleration_covariance);
   return msg;
 }
 
@@ -116,9 +142,11 @@ geometry_msgs::TransformStamped fixedTransform(Plane plane, const std::string& w
       stamped(frame.parent.empty() ? worldFrame : frame.parent, frame.name, stamp);
   if (frame.laser) {
     t.transform = toTransform(plane, frame.offset, frame.offsetAngle);
-    if (plane == Plane::XZ) {
-      const Eigen::Quaterniond upright(Eigen::AngleAxisd(0.5 * kPi, Eigen::Vector3d::UnitX()));
-      t.transform.rotation = toMsg(fromMsg(t.transform.rotation) * upright);
+    Eigen::Quaterniond turn = Eigen::Quaterniond::Identity();
+    if (plane == Plane::XZ) turn = Eigen::AngleAxisd(0.5 * kPi, Eigen::Vector3d::UnitX());
+    if (frame.flip) turn = turn * Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX());
+    if (plane == Plane::XZ || frame.flip) {
+      t.transform.rotation = toMsg(fromMsg(t.transform.rotation) * turn);
     }
     return t;
   }

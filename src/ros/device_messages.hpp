@@ -9,6 +9,7 @@
 #include <impulse2d/ContactArray.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/LaserScan.h>
 
 #include <string>
@@ -31,8 +32,17 @@ geometry_msgs::TransformStamped worldToOdom(Plane plane, const std::string& worl
                                             const OdometryReading& odom, const ros::Time& stamp);
 
 /// A scan as sensor_msgs/LaserScan: angle_max is the last beam's angle, scan_time the period,
-/// time_increment 0 (every beam is cast at the same instant).
+/// time_increment 0 (every beam is cast at the same instant), intensities the shapes'
+/// reflectance.
 sensor_msgs::LaserScan toLaserScan(const ScanReading& scan, const ros::Time& stamp);
+
+/// The smallest variance an IMU's covariance states: an axis without noise is exact, but ROS
+/// reads an all-zero covariance as unknown.
+constexpr double kExactVariance = 1e-9;
+
+/// An IMU reading as sensor_msgs/Imu in the unit's frame: covariances diagonal, each axis its
+/// noise's variance (at least kExactVariance).
+sensor_msgs::Imu toImu(const ImuReading& reading, const ros::Time& stamp);
 
 /// A bumper's contacts, in the world frame's 2D coordinates as ~contacts has them.
 impulse2d::ContactArray toContactArray(const BumperReading& change, const std::string& worldFrame,

@@ -88,6 +88,7 @@ void SimWorld::restoreStart() {
   urdfFrames_.clear();
   devices_->clear();
   scans_.clear();
+  imuReadings_.clear();
   bumperChanges_.clear();
   ++staticVersion_;
   if (!startYaml_.empty()) {

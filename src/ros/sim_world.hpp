@@ -98,10 +98,12 @@ struct FixedFrame {
   std::string parent;  ///< a body's frame; empty: the world's frame_id
   std::string owner;   ///< the body whose removal removes the frame (its parent, or its model's)
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the parent's 3D frame
-  /// Lasers: the 2D offset in the body frame instead of `pose` (the plane mapping is the node's).
+  /// Lasers and IMUs: the 2D offset in the body frame instead of `pose` (the plane mapping is
+  /// the node's).
   bool laser = false;
   Vec2 offset = Vec2::Zero();
   double offsetAngle = 0.0;
+  bool flip = false;  ///< an upside-down laser: rolled half a turn about its x axis
 };
 
 /// A drive's odometry and its body's true pose, for ~odom and tf (sim_world_devices.cpp).
@@ -112,6 +114,7 @@ struct OdometryReading {
   Vec2 position = Vec2::Zero();  ///< the odometry, in the odom frame
   double angle = 0.0;
   double speed = 0.0;                ///< m/s along the body's x
+  double sideSpeed = 0.0;            ///< m/s along the body's y (omni)
   double turnRate = 0.0;             ///< rad/s
   Vec2 truePosition = Vec2::Zero();  ///< the body in the world
   double trueAngle = 0.0;
@@ -125,6 +128,20 @@ struct ScanReading {
   int beams = 0;
   int64_t stampNs = 0;
   std::vector<float> ranges;
+  std::vector<float> intensities;
+};
+
+/// One reading of an IMU, taken after the step that ended at stampNs.
+struct ImuReading {
+  std::string device;
+  std::string frame;  ///< "<body>/<device>"
+  ImuDef def;
+  int64_t stampNs = 0;
+  // As the unit reads them (ImuSample in imu.hpp, which the node's headers leave out: its
+  // impulse2d::Shape would meet the message of that name).
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();     ///< rad/s
+  Eigen::Vector3d linearAcceleration = Eigen::Vector3d::Zero();  ///< m/s^2
 };
 
 /// A bumper's contacts after a change, body_a always its body.
@@ -241,15 +258,17 @@ class SimWorld {
   uint64_t deviceVersion() const;
   /// A cmd_vel for the drive named `device` (v m/s forward, w rad/s), at the current simulated
   /// time; false with a message when there is no such drive or a number is not finite.
-  bool commandDrive(const std::string& device, double v, double w, std::string* error);
-  /// Lasers and bumpers are computed only while active (someone subscribes).
+  /// A command to the named drive: vx, vy (omni only) m/s and w rad/s in its body's frame.
+  bool commandDrive(const std::string& device, double vx, double vy, double w, std::string* error);
+  /// Lasers, bumpers and IMUs are read only while active (someone subscribes).
   void setDeviceActive(const std::string& device, bool active);
   std::vector<OdometryReading> odometry() const;
-  /// The scans and bumper changes of the steps since the last call, oldest first (at most 64
-  /// of each are kept).
+  /// The scans, IMU readings and bumper changes of the steps since the last call, oldest first
+  /// (at most 64 of each are kept).
   std::vector<ScanReading> takeScans();
+  std::vector<ImuReading> takeImuReadings();
   std::vector<BumperReading> takeBumperChanges();
-  /// URDF link frames and laser frames whose bodies exist.
+  /// URDF link frames and laser and IMU frames whose bodies exist.
   std::vector<FixedFrame> fixedFrames() const;
 
   /// One fixed step, with the wrenches that are due and the devices.
@@ -323,6 +342,7 @@ class SimWorld {
   std::function<std::string(const std::string&)> resolveTopic_;
   std::vector<std::string> reservedTopics_;
   std::vector<ScanReading> scans_;
+  std::vector<ImuReading> imuReadings_;
   std::vector<BumperReading> bumperChanges_;
   uint64_t steps_ = 0;
   int64_t simTimeNs_ = 0;

@@ -61,17 +61,18 @@ std::vector<DeviceDef> SimWorld::devices() const {
 
 uint64_t SimWorld::deviceVersion() const { return devices_->version(); }
 
-bool SimWorld::commandDrive(const std::string& device, double v, double w, std::string* error) {
+bool SimWorld::commandDrive(const std::string& device, double vx, double vy, double w,
+                            std::string* error) {
   Device* found = devices_->find(device);
   if (found == nullptr || !found->drive) {
-    *error = "no diff_drive named '" + device + "'";
+    *error = "no drive named '" + device + "'";
     return false;
   }
-  if (!std::isfinite(v) || !std::isfinite(w)) {
-    *error = "linear.x, angular.z: must be finite";
+  if (!std::isfinite(vx) || !std::isfinite(vy) || !std::isfinite(w)) {
+    *error = "linear.x, linear.y, angular.z: must be finite";
     return false;
   }
-  found->drive->command(v, w, 1e-9 * static_cast<double>(simTimeNs_));
+  found->drive->command(vx, vy, w, 1e-9 * static_cast<double>(simTimeNs_));
   return true;
 }
 
@@ -92,6 +93,7 @@ std::vector<OdometryReading> SimWorld::odometry() const {
     r.position = device.drive->odometry().position;
     r.angle = device.drive->odometry().angle;
     r.speed = device.drive->speed();
+    r.sideSpeed = device.drive->sideSpeed();
     r.turnRate = device.drive->turnRate();
     r.truePosition = body.xf.p;
     r.trueAngle = body.angle;
@@ -112,7 +114,18 @@ void SimWorld::collectDeviceReadings(bool bodiesRemoved) {
       scan.beams = device.laser->beamCount();
       scan.stampNs = simTimeNs_;
       scan.ranges = device.ranges;
+      scan.intensities = device.intensities;
       enqueue(&scans_, std::move(scan));
+    } else if (device.imu) {
+      ImuReading reading;
+      reading.device = device.def.name;
+      reading.frame = device.def.body + "/" + device.def.name;
+      reading.def = device.def.imu;
+      reading.stampNs = simTimeNs_;
+      reading.orientation = device.imuReading.orientation;
+      reading.angularVelocity = device.imuReading.angularVelocity;
+      reading.linearAcceleration = device.imuReading.linearAcceleration;
+      enqueue(&imuReadings_, std::move(reading));
     } else if (device.bumper) {
       BumperReading change;
       change.device = device.def.name;
@@ -137,6 +150,12 @@ std::vector<ScanReading> SimWorld::takeScans() {
   return out;
 }
 
+std::vector<ImuReading> SimWorld::takeImuReadings() {
+  std::vector<ImuReading> out;
+  out.swap(imuReadings_);
+  return out;
+}
+
 std::vector<BumperReading> SimWorld::takeBumperChanges() {
   std::vector<BumperReading> out;
   out.swap(bumperChanges_);
@@ -156,14 +175,15 @@ std::vector<FixedFrame> SimWorld::fixedFrames() const {
     if (world_->findBody(frame.owner).valid()) out.push_back(frame);
   }
   for (const Device& device : devices_->devices()) {
-    if (!device.laser || !world_->isValid(device.body)) continue;
+    if (!(device.laser || device.imu) || !world_->isValid(device.body)) continue;
     FixedFrame frame;
     frame.name = device.def.body + "/" + device.def.name;
     frame.parent = device.def.body;
     frame.owner = device.def.body;
     frame.laser = true;
-    frame.offset = device.def.laser.offset;
-    frame.offsetAngle = device.def.laser.offsetAngle;
+    frame.offset = device.laser ? device.def.laser.offset : device.def.imu.offset;
+    frame.offsetAngle = device.laser ? device.def.laser.offsetAngle : device.def.imu.offsetAngle;
+    frame.flip = device.laser && device.def.laser.flip;
     out.push_back(frame);
   }
   return out;

@@ -52,6 +52,9 @@ void WorldNode::publishDeviceReadings() {
   for (const ScanReading& scan : sim_.takeScans()) {
     deviceEndpoints_->publish(scan.device, toLaserScan(scan, stampFor(scan.stampNs)));
   }
+  for (const ImuReading& reading : sim_.takeImuReadings()) {
+    deviceEndpoints_->publish(reading.device, toImu(reading, stampFor(reading.stampNs)));
+  }
   for (const BumperReading& change : sim_.takeBumperChanges()) {
     deviceEndpoints_->publish(change.device,
                               toContactArray(change, sim_.frameId(), stampFor(change.stampNs)));
@@ -68,7 +71,7 @@ void WorldNode::onCmdVel(const std::string& device, const geometry_msgs::Twist& 
   std::string error;
   {
     Lock lock(*this);
-    sim_.commandDrive(device, twist.linear.x, twist.angular.z, &error);
+    sim_.commandDrive(device, twist.linear.x, twist.linear.y, twist.angular.z, &error);
   }
   if (!error.empty()) {
     ROS_WARN_THROTTLE(1.0, "[%s] cmd_vel of '%s': %s", name_.c_str(), device.c_str(),

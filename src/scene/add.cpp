@@ -113,9 +113,9 @@ class SceneAdder {
       if (!missing.empty()) return missing;
       const BodyType type =
           ref.worldId.valid() ? world_.body(ref.worldId).type : scene_.bodies[ref.sceneIndex].type;
-      if (device.type == DeviceType::DiffDrive && type != BodyType::Dynamic) {
-        return where + "body: '" + printable(device.body) +
-               "' is not dynamic; a diff_drive moves its body with forces";
+      if (isDrive(device.type) && type != BodyType::Dynamic) {
+        return where + "body: '" + printable(device.body) + "' is not dynamic; " +
+               deviceTypeWithArticle(device.type) + " moves its body with forces";
       }
     }
     return "";

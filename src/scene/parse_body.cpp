@@ -20,7 +20,7 @@ CollisionFilter parseFilter(const YAML::Node& node) {
 ShapeDef parseShape(const YAML::Node& node) {
   const Fields f(node, "a shape",
                  {"type", "size", "radius", "vertices", "offset", "angle", "density", "friction",
-                  "restitution", "filter"});
+                  "restitution", "reflectance", "filter"});
   ShapeDef def;
   const std::string type = f.string("type", "box");
   std::string geometryKey;  // the one key that gives this type's geometry
@@ -50,6 +50,7 @@ ShapeDef parseShape(const YAML::Node& node) {
   def.density = f.number("density", def.density);
   def.friction = f.number("friction", def.friction);
   def.restitution = f.number("restitution", def.restitution);
+  def.reflectance = f.number("reflectance", def.reflectance);
   if (f.has("filter")) {
     try {
       def.filter = parseFilter(f.node("filter"));

@@ -16,12 +16,13 @@ namespace {
 
 DeviceType parseDeviceType(const YAML::Node& node) {
   const YAML::Node type = node.IsMap() ? node["type"] : YAML::Node();
-  if (!type) throw SceneError("type", "must be given (diff_drive, laser or bumper)");
+  const char* kTypes = "diff_drive, omni, ackermann, laser, bumper or imu";
+  if (!type) throw SceneError("type", std::string("must be given (") + kTypes + ")");
   const std::string name = type.IsScalar() ? type.Scalar() : "";
-  for (DeviceType t : {DeviceType::DiffDrive, DeviceType::Laser, DeviceType::Bumper}) {
+  for (DeviceType t : kDeviceTypes) {
     if (name == deviceTypeName(t)) return t;
   }
-  throw SceneError("type", "must be diff_drive, laser or bumper, not " + quoted(name));
+  throw SceneError("type", std::string("must be ") + kTypes + ", not " + quoted(name));
 }
 
 struct TypeKeys {
@@ -34,10 +35,21 @@ const TypeKeys kTypeKeys[] = {
      {"cmd_vel_topic", "odom_topic", "odom_frame", "publish_tf", "ground_truth_tf",
       "max_linear_accel", "max_angular_accel", "cmd_timeout", "max_force", "max_torque",
       "pose_variance", "twist_variance"}},
+    {DeviceType::Omni,
+     {"cmd_vel_topic", "odom_topic", "odom_frame", "publish_tf", "ground_truth_tf",
+      "max_linear_accel", "max_angular_accel", "cmd_timeout", "max_force", "max_torque",
+      "pose_variance", "twist_variance"}},
+    {DeviceType::Ackermann,
+     {"cmd_vel_topic", "odom_topic", "odom_frame", "publish_tf", "ground_truth_tf",
+      "max_linear_accel", "cmd_timeout", "max_force", "max_torque", "pose_variance",
+      "twist_variance", "wheelbase", "max_steering_angle", "steering_rate"}},
     {DeviceType::Laser,
      {"offset", "topic", "range_min", "range_max", "angle_min", "angle_max", "angle_increment",
-      "update_rate", "noise_stddev", "seed"}},
+      "update_rate", "noise_stddev", "seed", "flip"}},
     {DeviceType::Bumper, {"topic"}},
+    {DeviceType::Imu,
+     {"offset", "topic", "update_rate", "seed", "orientation_noise", "angular_velocity_noise",
+      "linear_acceleration_noise", "angular_velocity_bias", "linear_acceleration_bias"}},
 };
 
 // A key of some device type other than `type` (and not also one of its own).
@@ -54,8 +66,8 @@ void refuseOtherTypesKeys(const Fields& f, DeviceType type) {
   for (const TypeKeys& entry : kTypeKeys) {
     for (const char* key : entry.keys) {
       if (f.has(key) && !takes(type, key)) {
-        throw SceneError(key, std::string("is not used by a ") + deviceTypeName(type) +
-                                  " (it is a " + deviceTypeName(entry.type) + " key)");
+        throw SceneError(key, "is not used by " + deviceTypeWithArticle(type) + " (it is " +
+                                  deviceTypeWithArticle(entry.type) + " key)");
       }
     }
   }
@@ -89,7 +101,7 @@ Eigen::Vector3d variances(const Fields& f, const char* key, const Vec2& xy, doub
   return v;
 }
 
-DriveDef parseDiffDrive(const Fields& f) {
+DriveDef parseDrive(const Fields& f, DeviceType type) {
   DriveDef d;
   d.cmdVelTopic = topic(f, "cmd_vel_topic", d.cmdVelTopic);
   d.odomTopic = topic(f, "odom_topic", d.odomTopic);
@@ -112,7 +124,32 @@ DriveDef parseDiffDrive(const Fields& f) {
       variances(f, "twist_variance", d.twistVarianceXy, d.twistVarianceTheta);
   d.twistVarianceXy = twist.head<2>();
   d.twistVarianceTheta = twist.z();
+  if (type == DeviceType::Ackermann) {
+    if (!f.has("wheelbase")) {
+      throw SceneError("wheelbase",
+                       "must be given: m from the rear axle (the body's origin) "
+                       "to the front axle");
+    }
+    d.wheelbase = positive(f, "wheelbase", d.wheelbase);
+    if (d.wheelbase > kMaxCoordinate) throw SceneError("wheelbase", "must be at most 1e6 m");
+    d.maxSteeringAngle = f.number("max_steering_angle", d.maxSteeringAngle);
+    if (!(d.maxSteeringAngle > 0.0 && d.maxSteeringAngle < 0.5 * kPi)) {
+      throw SceneError("max_steering_angle", "must be in (0, pi/2) rad");
+    }
+    d.steeringRate = positive(f, "steering_rate", d.steeringRate);
+  }
   return d;
+}
+
+// The `seed` key: whether it is given, and its value.
+bool seed(const Fields& f, uint32_t* out) {
+  if (!f.has("seed")) return false;
+  const double seed = f.number("seed", 0.0);
+  if (!(seed >= 0.0 && seed <= 4294967295.0) || std::floor(seed) != seed) {
+    throw SceneError("seed", "must be an integer from 0 to 4294967295");
+  }
+  *out = static_cast<uint32_t>(seed);
+  return true;
 }
 
 LaserDef parseLaser(const Fields& f) {
@@ -133,11 +170,25 @@ LaserDef parseLaser(const Fields& f) {
   l.angleMax = f.number("angle_max", l.angleMax);
   if (!std::isfinite(l.angleMin)) throw SceneError("angle_min", "must be finite");
   if (!std::isfinite(l.angleMax)) throw SceneError("angle_max", "must be finite");
-  if (l.angleMax < l.angleMin) throw SceneError("angle_max", "must not be less than angle_min");
-  if (l.angleMax - l.angleMin > 2.0 * kPi + 1e-9) {
+  l.angleIncrement = f.number("angle_increment", l.angleIncrement);
+  if (!std::isfinite(l.angleIncrement) || l.angleIncrement == 0.0) {
+    throw SceneError("angle_increment", "must be finite and not 0 (< 0 sweeps clockwise)");
+  }
+  // Beams sweep from angle_min towards angle_max: counter-clockwise with a positive increment,
+  // clockwise with a negative one.
+  if (l.angleIncrement > 0.0 && l.angleMax < l.angleMin) {
+    throw SceneError("angle_max",
+                     "must not be less than angle_min (or give a negative "
+                     "angle_increment to sweep clockwise)");
+  }
+  if (l.angleIncrement < 0.0 && l.angleMax > l.angleMin) {
+    throw SceneError("angle_max",
+                     "must not be greater than angle_min with a negative "
+                     "angle_increment (a clockwise sweep)");
+  }
+  if (std::abs(l.angleMax - l.angleMin) > 2.0 * kPi + 1e-9) {
     throw SceneError("angle_max", "angle_max - angle_min must be at most 2 pi (one turn)");
   }
-  l.angleIncrement = positive(f, "angle_increment", l.angleIncrement);
   if ((l.angleMax - l.angleMin) / l.angleIncrement >= static_cast<double>(kMaxLaserBeams)) {
     throw SceneError("angle_increment", "gives more than " + std::to_string(kMaxLaserBeams) +
                                             " beams; make it larger");
@@ -146,15 +197,47 @@ LaserDef parseLaser(const Fields& f) {
   if (l.updateRate > 1e6) throw SceneError("update_rate", "must be at most 1e6 Hz");
   l.noiseStddev = nonNegative(f, "noise_stddev", l.noiseStddev);
   if (l.noiseStddev > kMaxCoordinate) throw SceneError("noise_stddev", "must be at most 1e6 m");
-  if (f.has("seed")) {
-    const double seed = f.number("seed", 0.0);
-    if (!(seed >= 0.0 && seed <= 4294967295.0) || std::floor(seed) != seed) {
-      throw SceneError("seed", "must be an integer from 0 to 4294967295");
-    }
-    l.hasSeed = true;
-    l.seed = static_cast<uint32_t>(seed);
-  }
+  l.hasSeed = seed(f, &l.seed);
+  l.flip = f.boolean("flip", l.flip);
   return l;
+}
+
+// A number for all three axes (x, y, z), or a list of three; each finite, >= 0 unless `isSigned`,
+// and at most `limit` (`limitText` in words) in size.
+Eigen::Vector3d perAxis(const Fields& f, const char* key, bool isSigned, double limit,
+                        const char* limitText) {
+  if (!f.has(key)) return Eigen::Vector3d::Zero();
+  const YAML::Node& n = f.node(key);
+  const Eigen::Vector3d v =
+      n.IsScalar() ? Eigen::Vector3d::Constant(f.number(key, 0.0)) : f.vec3(key, {});
+  if (!v.allFinite() || (!isSigned && (v.array() < 0.0).any()) ||
+      (v.cwiseAbs().array() > limit).any()) {
+    throw SceneError(key, std::string("must be a number or a list of three (x, y, z), each ") +
+                              (isSigned ? "" : ">= 0, ") + "finite and at most " + limitText +
+                              " in size");
+  }
+  return v;
+}
+
+ImuDef parseImu(const Fields& f) {
+  ImuDef u;
+  const Eigen::Vector3d offset =
+      f.vec3("offset", Eigen::Vector3d(u.offset.x(), u.offset.y(), u.offsetAngle));
+  if (!offset.allFinite() || offset.head<2>().cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw SceneError("offset", "must be three finite numbers (x, y, theta), x and y within 1e6 m");
+  }
+  u.offset = offset.head<2>();
+  u.offsetAngle = offset.z();
+  u.topic = topic(f, "topic", u.topic);
+  u.updateRate = positive(f, "update_rate", u.updateRate);
+  if (u.updateRate > 1e6) throw SceneError("update_rate", "must be at most 1e6 Hz");
+  u.orientationNoise = perAxis(f, "orientation_noise", false, kPi, "pi rad");
+  u.angularVelocityNoise = perAxis(f, "angular_velocity_noise", false, 1e6, "1e6 rad/s");
+  u.linearAccelerationNoise = perAxis(f, "linear_acceleration_noise", false, 1e6, "1e6 m/s^2");
+  u.angularVelocityBias = perAxis(f, "angular_velocity_bias", true, 1e6, "1e6 rad/s");
+  u.linearAccelerationBias = perAxis(f, "linear_acceleration_bias", true, 1e6, "1e6 m/s^2");
+  u.hasSeed = seed(f, &u.seed);
+  return u;
 }
 
 }  // namespace
@@ -187,7 +270,16 @@ DeviceDef parseDevice(const YAML::Node& node) {
                   "angle_increment",
                   "update_rate",
                   "noise_stddev",
-                  "seed"});
+                  "seed",
+                  "flip",
+                  "wheelbase",
+                  "max_steering_angle",
+                  "steering_rate",
+                  "orientation_noise",
+                  "angular_velocity_noise",
+                  "linear_acceleration_noise",
+                  "angular_velocity_bias",
+                  "linear_acceleration_bias"});
   refuseOtherTypesKeys(f, type);
   DeviceDef def;
   def.type = type;
@@ -195,13 +287,18 @@ DeviceDef parseDevice(const YAML::Node& node) {
   def.body = f.name("body");
   switch (type) {
     case DeviceType::DiffDrive:
-      def.drive = parseDiffDrive(f);
+    case DeviceType::Omni:
+    case DeviceType::Ackermann:
+      def.drive = parseDrive(f, type);
       break;
     case DeviceType::Laser:
       def.laser = parseLaser(f);
       break;
     case DeviceType::Bumper:
       def.bumper.topic = topic(f, "topic", def.bumper.topic);
+      break;
+    case DeviceType::Imu:
+      def.imu = parseImu(f);
       break;
   }
   return def;

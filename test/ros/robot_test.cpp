@@ -3,15 +3,13 @@
 // 3 m ahead appears at 3 m in the scan; the bumper reports the wall when the robot reaches it; a
 // drive without commands stops; the frames on tf; devices through ~load_scene; ~ray_cast and
 // ~query_point.
-#include "world_test_util.hpp"
+#include "robot_test_util.hpp"
 
-#include <geometry_msgs/Twist.h>
 #include <impulse2d/ContactArray.h>
 #include <impulse2d/LoadScene.h>
 #include <impulse2d/QueryPoint.h>
 #include <impulse2d/RayCast.h>
 #include <impulse2d/SetBodyState.h>
-#include <impulse2d/Step.h>
 #include <nav_msgs/Odometry.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/LaserScan.h>
@@ -21,40 +19,6 @@
 
 namespace impulse2d_test {
 namespace {
-
-// Bounded waits: generous for a loaded CI machine; they bound, they do not measure.
-constexpr double kWait = 20.0;
-
-double speedOf(const std::string& body) {
-  impulse2d::GetBodyState::Response state;
-  EXPECT_TRUE(getState(body, &state)) << body;
-  return std::hypot(state.twist.linear.x, state.twist.linear.y);
-}
-
-void stepWorld(uint32_t steps) {
-  impulse2d::Step srv;
-  srv.request.steps = steps;
-  ASSERT_TRUE(call("step", srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
-}
-
-/// A cmd_vel publisher, connected to the node before it is used.
-class CmdVel {
- public:
-  explicit CmdVel(const std::string& topic)
-      : pub_(ros::NodeHandle().advertise<geometry_msgs::Twist>(worldNs() + "/" + topic, 10)) {
-    EXPECT_TRUE(waitFor([&] { return pub_.getNumSubscribers() > 0; }, kWait)) << topic;
-  }
-  void send(double v, double w = 0.0) {
-    geometry_msgs::Twist twist;
-    twist.linear.x = v;
-    twist.angular.z = w;
-    pub_.publish(twist);
-  }
-
- private:
-  ros::Publisher pub_;
-};
 
 impulse2d::LoadScene::Response loadScene(const std::string& yaml) {
   impulse2d::LoadScene srv;
@@ -229,7 +193,7 @@ TEST_F(Robot, DevicesComeAndGoWithScenesAndBodies) {
   // Refused whole, naming the device and key; nothing is added.
   const std::vector<std::pair<std::string, std::string>> refused = {
       {"devices: [{type: sonar, name: s, body: robot}]",
-       "devices[0] 's': type: must be diff_drive, laser or bumper"},
+       "devices[0] 's': type: must be diff_drive, omni, ackermann, laser, bumper or imu"},
       {"devices: [{type: bumper, name: b2, body: robot, topic: scan}]",
        "devices[0] 'b2': topic: 'scan' is already used by the device 'laser'"},
       {"bodies: [{name: box2, shapes: [{}]}]\n"

@@ -58,19 +58,20 @@ TEST(SimWorldDevices, StartDevicesMayNameTheUrdfModelsBodies) {
 
   // Driven at 0.5 m/s for a second of simulated time, after the ramp.
   std::string error;
-  ASSERT_TRUE(sim.commandDrive("drive", 0.5, 0.0, &error)) << error;
+  ASSERT_TRUE(sim.commandDrive("drive", 0.5, 0.0, 0.0, &error)) << error;
   for (int i = 0; i < 100; ++i) sim.step();
   const std::vector<OdometryReading> odom = sim.odometry();
   ASSERT_EQ(odom.size(), 1u);
   EXPECT_EQ(odom[0].body, "robot/base_link");
   EXPECT_DOUBLE_EQ(odom[0].speed, 0.5);
   EXPECT_NEAR(odom[0].position.x(), 0.5 - 0.0625, 1e-9);
-  // The physics within what its sub-steps make of the ramp (test_diff_drive.cpp).
+  // The physics within what its sub-steps make of the ramp (test_drive.cpp).
   EXPECT_NEAR(odom[0].truePosition.x(), odom[0].position.x(), 1e-3);
 
-  EXPECT_FALSE(sim.commandDrive("laser", 0.5, 0.0, &error));
-  EXPECT_EQ(error, "no diff_drive named 'laser'");
-  EXPECT_FALSE(sim.commandDrive("drive", NAN, 0.0, &error));
+  EXPECT_FALSE(sim.commandDrive("laser", 0.5, 0.0, 0.0, &error));
+  EXPECT_EQ(error, "no drive named 'laser'");
+  EXPECT_FALSE(sim.commandDrive("drive", NAN, 0.0, 0.0, &error));
+  EXPECT_FALSE(sim.commandDrive("drive", 0.0, NAN, 0.0, &error));
 
   // Refused at start: the whole scene goes, the URDF model stays.
   SimWorld bad;

@@ -1,5 +1,6 @@
-// The differential drive's model without ROS: ramps, dead reckoning, and the drive moving a body
-// through the physics (straight, turning, stopping on a timeout, blocked, pushed, on a slope).
+// The drives' model without ROS: ramps, dead reckoning, and the drive moving a body through the
+// physics (straight, turning, stopping on a timeout, blocked, pushed, on a slope); the holonomic
+// drive's sideways motion and the car's steering.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,11 +50,12 @@ struct DriveWorld {
   Drive drive;
   double now = 0.0;
 
-  explicit DriveWorld(const DriveDef& def = DriveDef(), const Vec2& gravity = Vec2::Zero())
+  explicit DriveWorld(const DriveDef& def = DriveDef(), const Vec2& gravity = Vec2::Zero(),
+                      DeviceType type = DeviceType::DiffDrive)
       : world(settings(gravity)),
         robot(test::addCircle(world, "robot", Vec2::Zero(), 0.25, BodyType::Dynamic,
                               10.0 / (kPi * 0.25 * 0.25))),
-        drive(def, robot, world) {}
+        drive(def, robot, world, type) {}
 
   static WorldDef settings(const Vec2& gravity) {
     WorldDef def;
@@ -196,6 +198,162 @@ TEST(Drive, IgnoresNonFiniteCommandsAndLetsARestingBodySleep) {
   w.drive.command(0.0, 0.0, w.now);
   w.step(200);
   EXPECT_FALSE(w.body().awake);  // stopped, the drive leaves it alone
+}
+
+}  // namespace
+}  // namespace impulse2d
+
+namespace impulse2d {
+namespace {
+
+TEST(Odometry, SidewaysArcsIntegrateTheBodyFramesVelocity) {
+  // Sideways at 1 m/s while turning a quarter turn in 1 s: the arc of radius 2 / pi to the left
+  // of a robot facing +y... i.e. the same arc as driving forward, turned a quarter turn.
+  const Pose2 sideways = integrateArc(Pose2(), Vec2(0.0, 1.0), kPi / 2, 1.0);
+  EXPECT_NEAR(sideways.position.x(), -2.0 / kPi, 1e-15);
+  EXPECT_NEAR(sideways.position.y(), 2.0 / kPi, 1e-15);
+  EXPECT_NEAR(sideways.angle, kPi / 2, 1e-15);
+  // Forward only, it is the scalar arc.
+  const Pose2 a = integrateArc(Pose2(), Vec2(0.7, 0.0), 0.3, 0.5);
+  const Pose2 b = integrateArc(Pose2(), 0.7, 0.3, 0.5);
+  EXPECT_NEAR((a.position - b.position).norm(), 0.0, 1e-15);
+  // Small turns: the chord along the mid-step heading.
+  const Pose2 tiny = integrateArc(Pose2(), Vec2(0.0, 1.0), 1e-5, 0.01);
+  EXPECT_NEAR(tiny.position.x(), -0.01 * std::sin(0.5e-7), 1e-18);
+  EXPECT_NEAR(tiny.position.y(), 0.01 * std::cos(0.5e-7), 1e-18);
+}
+
+TEST(Omni, MovesSidewaysAndDiagonallyWithTheAccelerationLimitOnBoth) {
+  DriveWorld w(DriveDef(), Vec2::Zero(), DeviceType::Omni);
+  // 0.3 m/s sideways and 0.4 forward: 0.5 m/s in all, reached in 0.25 s at 2 m/s^2.
+  for (int i = 0; i < 200; ++i) {
+    w.drive.command(0.4, 0.3, 0.0, w.now);
+    w.step();
+  }
+  EXPECT_NEAR(w.drive.speed(), 0.4, 1e-12);
+  EXPECT_NEAR(w.drive.sideSpeed(), 0.3, 1e-12);
+  // 2 s less half the ramp: 0.5 x (2 - 0.125) m along the direction (0.8, 0.6).
+  const double travelled = 0.5 * (2.0 - 0.125);
+  EXPECT_NEAR(w.drive.odometry().position.x(), 0.8 * travelled, 1e-9);
+  EXPECT_NEAR(w.drive.odometry().position.y(), 0.6 * travelled, 1e-9);
+  // The body follows within what its sub-steps make of the ramp: 0.3 mm.
+  EXPECT_NEAR((w.body().xf.p - w.drive.odometry().position).norm(), 0.0, 5e-4);
+  EXPECT_NEAR(w.body().angle, 0.0, 1e-12);
+  EXPECT_NEAR(w.body().linearVelocity.x(), 0.4, 1e-9);
+  EXPECT_NEAR(w.body().linearVelocity.y(), 0.3, 1e-9);
+}
+
+TEST(Omni, TurnsWhileMovingSidewaysAndStopsOnTimeout) {
+  DriveWorld w(DriveDef(), Vec2::Zero(), DeviceType::Omni);
+  for (int i = 0; i < 300; ++i) {
+    w.drive.command(0.0, 0.5, 0.5, w.now);
+    w.step();
+  }
+  // Sideways at 0.5 m/s turning at 0.5 rad/s: a circle of 1 m radius, which the body follows.
+  EXPECT_NEAR(w.body().angle, w.drive.odometry().angle, 1e-3);
+  EXPECT_NEAR((w.body().xf.p - w.drive.odometry().position).norm(), 0.0, 0.01);
+  EXPECT_NEAR(w.body().linearVelocity.norm(), 0.5, 1e-3);
+  // The body's velocity is along its own +y.
+  const Vec2 along = w.body().xf.q.applyInverse(w.body().linearVelocity);
+  EXPECT_NEAR(along.x(), 0.0, 0.005);
+  w.step(100);  // no more commands: after 0.5 s the target is 0
+  EXPECT_EQ(w.drive.sideSpeed(), 0.0);
+  EXPECT_NEAR(w.body().linearVelocity.norm(), 0.0, 1e-9);
+  // A diff_drive ignores linear.y.
+  DriveWorld d;
+  for (int i = 0; i < 50; ++i) {
+    d.drive.command(0.0, 0.5, 0.0, d.now);
+    d.step();
+  }
+  EXPECT_EQ(d.drive.sideSpeed(), 0.0);
+  EXPECT_NEAR(d.body().xf.p.norm(), 0.0, 1e-12);
+}
+
+DriveDef car(double wheelbase, double maxSteering) {
+  DriveDef def;
+  def.wheelbase = wheelbase;
+  def.maxSteeringAngle = maxSteering;
+  def.steeringRate = 2.0;
+  def.cmdTimeout = 0.0;
+  return def;
+}
+
+TEST(Ackermann, SteeringForIsTheBicycleModelWithinTheLimit) {
+  // w = v tan(angle) / L
+  EXPECT_NEAR(steeringFor(1.0, 0.5, 0.4, 0.6, 0.0), std::atan(0.2), 1e-15);
+  EXPECT_NEAR(steeringFor(-1.0, 0.5, 0.4, 0.6, 0.0), -std::atan(0.2), 1e-15);  // reversing
+  EXPECT_EQ(steeringFor(1.0, 10.0, 0.4, 0.6, 0.0), 0.6);
+  EXPECT_EQ(steeringFor(1.0, -10.0, 0.4, 0.6, 0.0), -0.6);
+  EXPECT_EQ(steeringFor(0.0, 1.0, 0.4, 0.6, 0.3), 0.3);  // at rest: no angle turns it
+}
+
+TEST(Ackermann, TurnsAtTheAskedRateWhenTheSteeringAllowsIt) {
+  DriveWorld w(car(0.4, 0.6), Vec2::Zero(), DeviceType::Ackermann);
+  for (int i = 0; i < 300; ++i) {
+    w.drive.command(1.0, 0.5, w.now);
+    w.step();
+  }
+  EXPECT_NEAR(w.drive.steeringAngle(), std::atan(0.5 * 0.4 / 1.0), 1e-12);
+  EXPECT_NEAR(w.drive.turnRate(), 0.5, 1e-12);
+  EXPECT_NEAR(w.body().angularVelocity, 0.5, 1e-6);
+  // The rear axle (the body's origin) moves along the heading half a step back (the drive aims
+  // along the mid-step heading): no sideways slip there.
+  const Vec2 origin = w.body().velocityAt(w.body().xf.p);
+  const Rot midStep(w.body().angle - 0.5 * 0.5 * kDt);
+  EXPECT_NEAR(midStep.applyInverse(origin).y(), 0.0, 1e-6);
+  EXPECT_NEAR(midStep.applyInverse(origin).x(), 1.0, 1e-6);
+  EXPECT_NEAR((w.body().xf.p - w.drive.odometry().position).norm(), 0.0, 0.01);
+}
+
+TEST(Ackermann, TheTurningRadiusRespectsTheSteeringLimit) {
+  const double wheelbase = 0.5, limit = 0.4;
+  const double tightest = wheelbase / std::tan(limit);  // 1.18 m
+  DriveWorld w(car(wheelbase, limit), Vec2::Zero(), DeviceType::Ackermann);
+  // Asking for 3 rad/s at 1 m/s, a radius of 0.33 m, gets the tightest turn instead.
+  for (int i = 0; i < 200; ++i) {
+    w.drive.command(1.0, 3.0, w.now);
+    w.step();
+  }
+  EXPECT_NEAR(w.drive.steeringAngle(), limit, 1e-12);
+  const double radius = w.body().linearVelocity.norm() / std::abs(w.body().angularVelocity);
+  EXPECT_NEAR(radius, tightest, 0.01);
+  // Over a whole turn at the limit, the rear axle stays on that circle: its points all lie
+  // `tightest` from the centre the first quarter turn shows.
+  std::vector<Vec2> path;
+  for (int i = 0; i < 800; ++i) {
+    w.drive.command(1.0, 3.0, w.now);
+    w.step();
+    path.push_back(w.body().xf.p);
+  }
+  const Vec2 heading = w.body().xf.q.apply(Vec2(1.0, 0.0));
+  const Vec2 center = w.body().xf.p + tightest * Vec2(-heading.y(), heading.x());
+  for (const Vec2& p : path) EXPECT_NEAR((p - center).norm(), tightest, 0.02);
+}
+
+TEST(Ackermann, TheSteeringTurnsAtItsRateAndACarAtRestCannotTurn) {
+  DriveWorld w(car(0.4, 0.6), Vec2::Zero(), DeviceType::Ackermann);
+  w.drive.command(0.0, 1.0, w.now);
+  w.step(100);
+  EXPECT_EQ(w.drive.steeringAngle(), 0.0);
+  EXPECT_NEAR(w.body().angle, 0.0, 1e-12);
+  // Moving: the wheels turn at 2 rad/s towards the limit of 0.6 rad, 0.3 s.
+  for (int i = 0; i < 10; ++i) {
+    w.drive.command(0.5, 10.0, w.now);
+    w.step();
+  }
+  EXPECT_NEAR(w.drive.steeringAngle(), 0.2, 1e-12);
+  for (int i = 0; i < 30; ++i) {
+    w.drive.command(0.5, 10.0, w.now);
+    w.step();
+  }
+  EXPECT_NEAR(w.drive.steeringAngle(), 0.6, 1e-12);
+  // Reversing with the wheels turned left swings the nose right: the turn rate's sign follows v.
+  for (int i = 0; i < 200; ++i) {
+    w.drive.command(-0.5, -0.5 * std::tan(0.6) / 0.4, w.now);
+    w.step();
+  }
+  EXPECT_NEAR(w.drive.steeringAngle(), 0.6, 1e-12);
+  EXPECT_LT(w.body().angularVelocity, 0.0);
 }
 
 }  // namespace

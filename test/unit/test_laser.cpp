@@ -166,3 +166,90 @@ TEST(LaserScan, NoiseIsSeededPerDeviceWithTheStatedSpread) {
 
 }  // namespace
 }  // namespace impulse2d
+
+// Mounted as flatland allows (issue 24): upside down, sweeping clockwise, several on one body,
+// and intensities from the shapes' reflectance.
+namespace impulse2d {
+namespace {
+
+TEST(LaserMounting, UpsideDownBeamAngleALiesAtMinusA) {
+  WallScene scene;  // the wall along the body's +x
+  LaserDef def;
+  def.offset = Vec2(0.0, 0.0);
+  def.offsetAngle = kPi / 2;  // the scanner's x along the body's +y
+  def.angleMin = -kPi / 2;
+  def.angleMax = kPi / 2;
+  def.angleIncrement = kPi / 2;
+  Laser upright(def, scene.robot, 1);
+  def.flip = true;
+  Laser flipped(def, scene.robot, 1);
+  std::vector<float> a, b;
+  upright.scan(scene.world, &a);
+  flipped.scan(scene.world, &b);
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  // Upright, beam -pi/2 (the scanner's -y) is the body's +x: the wall, 3.2 - 0.1 m away.
+  EXPECT_NEAR(a[0], 3.1, 1e-6);
+  EXPECT_EQ(a[2], kInf);
+  // Upside down the scanner's y axis points the other way: beam +pi/2 looks at the wall.
+  EXPECT_EQ(b[0], kInf);
+  EXPECT_NEAR(b[2], 3.1, 1e-6);
+  EXPECT_EQ(b[1], a[1]);  // the beam along the scanner's x is the same either way
+}
+
+TEST(LaserMounting, ANegativeIncrementSweepsClockwise) {
+  WallScene scene;
+  LaserDef def;
+  def.angleMin = 0.0;
+  def.angleMax = -kPi / 2;
+  def.angleIncrement = -kPi / 4;  // beams at 0, -45 and -90 degrees, in that order
+  EXPECT_EQ(laserBeamCount(def), 3);
+  Laser laser(def, scene.robot, 1);
+  std::vector<float> ranges;
+  laser.scan(scene.world, &ranges);
+  ASSERT_EQ(ranges.size(), 3u);
+  EXPECT_NEAR(ranges[0], 3.0, 1e-6);
+  EXPECT_NEAR(ranges[1], 3.0 * std::sqrt(2.0), 1e-5);
+  EXPECT_EQ(ranges[2], kInf);  // along -y the 10 m wall is out of reach
+}
+
+TEST(LaserMounting, IntensitiesAreTheReflectanceOfTheShapeHit) {
+  World world;
+  const BodyId robot = test::addCircle(world, "robot", Vec2::Zero(), 0.25, BodyType::Dynamic);
+  BodyDef wall;
+  wall.name = "wall";
+  wall.type = BodyType::Static;
+  wall.position = Vec2(3.2, 0.0);
+  ShapeDef upper, lower;  // two shapes of one body, each its own reflectance
+  upper.size = lower.size = Vec2(0.2, 5.0);
+  upper.offset = Vec2(0.0, 2.5);
+  lower.offset = Vec2(0.0, -2.5);
+  upper.reflectance = 0.8;
+  lower.reflectance = 0.25;
+  wall.shapes = {upper, lower};
+  ASSERT_TRUE(world.createBody(wall).valid());
+  LaserDef def;
+  def.angleMin = -kPi / 4;
+  def.angleMax = kPi / 2;
+  def.angleIncrement = kPi / 4;  // -45, 0 (the seam), 45, 90 degrees
+  def.angleMin += 0.01;          // off the seam: -44.4, 0.6, 45.6, 90.6 degrees
+  def.angleMax += 0.01;
+  Laser laser(def, robot, 1);
+  std::vector<float> ranges, intensities;
+  laser.scan(world, &ranges, &intensities);
+  ASSERT_EQ(intensities.size(), 4u);
+  EXPECT_FLOAT_EQ(intensities[0], 0.25f);
+  EXPECT_FLOAT_EQ(intensities[1], 0.8f);
+  EXPECT_FLOAT_EQ(intensities[2], 0.8f);
+  EXPECT_EQ(ranges[3], kInf);
+  EXPECT_EQ(intensities[3], 0.0f);  // no hit: 0
+  // A shape without the key reads 0.
+  WallScene plain;
+  Laser plainLaser(def, plain.robot, 1);
+  plainLaser.scan(plain.world, &ranges, &intensities);
+  EXPECT_TRUE(std::isfinite(ranges[1]));
+  EXPECT_EQ(intensities[1], 0.0f);
+}
+
+}  // namespace
+}  // namespace impulse2d
