@@ -2,6 +2,7 @@
 // turns the clocks on; World::profile() is then the last step's.
 #pragma once
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -25,37 +26,41 @@ struct StepProfile {
   double continuous = 0.0;   // fast bodies swept; bodies pushed out of static ones
   double sleep = 0.0;        // islands put to sleep; escaped bodies removed
 
+  /// Each stage's name and member, in the order the step runs them (total left out).
+  struct Stage {
+    const char* name;
+    double StepProfile::*time;
+  };
+  static const std::array<Stage, 12>& stageTable() {
+    static const std::array<Stage, 12> table = {{{"broad phase", &StepProfile::broadPhase},
+                                                 {"narrow phase", &StepProfile::narrowPhase},
+                                                 {"colouring", &StepProfile::coloring},
+                                                 {"prepare", &StepProfile::prepare},
+                                                 {"warm start", &StepProfile::warmStart},
+                                                 {"solve", &StepProfile::solve},
+                                                 {"relax", &StepProfile::relax},
+                                                 {"restitution", &StepProfile::restitution},
+                                                 {"positions", &StepProfile::positions},
+                                                 {"integrate", &StepProfile::integrate},
+                                                 {"continuous", &StepProfile::continuous},
+                                                 {"sleep", &StepProfile::sleep}}};
+    return table;
+  }
+
   /// Each stage and its time, in the order the step runs them (total left out).
   std::vector<std::pair<const char*, double>> stages() const {
-    return {{"broad phase", broadPhase},
-            {"narrow phase", narrowPhase},
-            {"colouring", coloring},
-            {"prepare", prepare},
-            {"warm start", warmStart},
-            {"solve", solve},
-            {"relax", relax},
-            {"restitution", restitution},
-            {"positions", positions},
-            {"integrate", integrate},
-            {"continuous", continuous},
-            {"sleep", sleep}};
+    std::vector<std::pair<const char*, double>> out;
+    for (const Stage& stage : stageTable()) out.emplace_back(stage.name, this->*stage.time);
+    return out;
   }
   StepProfile& operator+=(const StepProfile& o) {
     total += o.total;
-    broadPhase += o.broadPhase;
-    narrowPhase += o.narrowPhase;
-    coloring += o.coloring;
-    prepare += o.prepare;
-    warmStart += o.warmStart;
-    solve += o.solve;
-    relax += o.relax;
-    restitution += o.restitution;
-    positions += o.positions;
-    integrate += o.integrate;
-    continuous += o.continuous;
-    sleep += o.sleep;
+    for (const Stage& stage : stageTable()) this->*stage.time += o.*stage.time;
     return *this;
   }
 };
+
+// A stage added to StepProfile must join stageTable() too (and then this count).
+static_assert(sizeof(StepProfile) == 13 * sizeof(double), "every stage is in stageTable()");
 
 }  // namespace impulse2d

@@ -169,12 +169,6 @@ double solveBundlePositions(const BundlePass& pass, int begin, int end, bool one
 /// Each lane's masses, block and largest shift (ContactBundles::finishFill).
 void prepareBundleMasses(ContactBundle* bundles, BundleExtra* extras, int begin, int end,
                          bool soft);
-/// The name of the instruction set the kernels run on ("AVX3", "AVX2", "SSE4", "EMU128").
-const char* contactKernelTarget();
-/// The instruction sets this processor can run the kernels on, best first.
-std::vector<std::string> contactKernelTargets();
-/// Runs the kernels on the named one of those (or, for "", the best again); false when it is
-/// not among them. Every one gives bit-identical results (contact_kernels.cpp).
-bool useContactKernelTarget(const std::string& name);
+// The kernels' instruction set is chosen through include/impulse2d/simd.hpp.
 
 }  // namespace impulse2d

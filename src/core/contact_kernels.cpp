@@ -693,7 +693,6 @@ void prepareBundleMasses(ContactBundle* bundles, BundleExtra* extras, int begin,
                          bool soft) {
   HWY_DYNAMIC_DISPATCH(PrepareBundleMasses)(bundles, extras, begin, end, soft);
 }
-const char* contactKernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTarget)(); }
 
 namespace {
 
@@ -705,13 +704,13 @@ const std::vector<int64_t>& availableTargets() {
 
 }  // namespace
 
-std::vector<std::string> contactKernelTargets() {
+std::vector<std::string> simdTargets() {
   std::vector<std::string> names;
   for (const int64_t target : availableTargets()) names.emplace_back(hwy::TargetName(target));
   return names;
 }
 
-bool useContactKernelTarget(const std::string& name) {
+bool useSimdTarget(const std::string& name) {
   for (const int64_t target : availableTargets()) {
     if (!name.empty() && name != hwy::TargetName(target)) continue;
     // The dispatch takes the best target of the mask (with the scalar fallback): the one named,
@@ -723,9 +722,7 @@ bool useContactKernelTarget(const std::string& name) {
   return false;
 }
 
-std::vector<std::string> simdTargets() { return contactKernelTargets(); }
-std::string simdTarget() { return contactKernelTarget(); }
-bool useSimdTarget(const std::string& name) { return useContactKernelTarget(name); }
+std::string simdTarget() { return HWY_DYNAMIC_DISPATCH(KernelTarget)(); }
 
 std::string useSimdTargetFromEnvironment() {
   const char* name = std::getenv("IMPULSE2D_SIMD");

@@ -205,19 +205,17 @@ struct WorldImpl {
                   bool pose);
   void correctSubstepPositions(const BundlePass& pass);
   /// Lists the joints the step solves (both solver paths): those with a body for which
-  /// moves(slot) holds, except welds inside a welded cluster (one rigid body already), with their
-  /// bodies; without warm starting their kept impulses are dropped.
+  /// moves(slot) holds, except welds inside a welded cluster (one rigid body already); without
+  /// warm starting their kept impulses are dropped.
   template <class Moves>
   void collectActiveJoints(Moves moves) {
     activeJoints.clear();
-    activeJointBodies.clear();
     for (size_t j = 0; j < joints.items.size(); ++j) {
       if (!joints.alive[j]) continue;
       Joint& joint = joints.items[j];
       if (!moves(joint.bodyA) && !moves(joint.bodyB)) continue;
       if (weldClusters.joins(joint.bodyA, joint.bodyB)) continue;
       activeJoints.push_back(static_cast<int>(j));
-      activeJointBodies.emplace_back(joint.bodyA, joint.bodyB);
       if (!def.warmStarting) {
         joint.pointImpulse.setZero();
         joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;

@@ -101,6 +101,10 @@ void WorldImpl::solveSubsteps(double dt) {
   laps.lap(&StepProfile::prepare);
 
   collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
+  activeJointBodies.clear();  // what the colouring needs of them
+  for (const int j : activeJoints) {
+    activeJointBodies.emplace_back(joints.items[j].bodyA, joints.items[j].bodyB);
+  }
   contactBundles.assign(contacts, activeJoints, activeJointBodies, sb);
   laps.lap(&StepProfile::coloring);
   // The joints, colour after colour and the overflow last, copied side by side: a colour's

@@ -39,16 +39,16 @@ uint64_t runScene(const std::string& file, SolverType solver, int threads, int s
 class WideSolver : public ::testing::TestWithParam<test::SolverCase> {};
 
 TEST_P(WideSolver, EveryInstructionSetGivesTheSameState) {
-  const std::vector<std::string> targets = contactKernelTargets();
+  const std::vector<std::string> targets = simdTargets();
   ASSERT_FALSE(targets.empty());
   for (const char* file : kScenes) {
     std::vector<uint64_t> hashes;
     for (const std::string& target : targets) {
-      ASSERT_TRUE(useContactKernelTarget(target)) << target;
-      ASSERT_EQ(std::string(contactKernelTarget()), target);
+      ASSERT_TRUE(useSimdTarget(target)) << target;
+      ASSERT_EQ(simdTarget(), target);
       hashes.push_back(runScene(file, GetParam().type, 1, 150));
     }
-    useContactKernelTarget("");
+    useSimdTarget("");
     for (size_t i = 1; i < hashes.size(); ++i) {
       EXPECT_EQ(hashes[i], hashes[0]) << file << ": " << targets[i] << " against " << targets[0];
     }
@@ -69,8 +69,8 @@ TEST_P(WideSolver, AnyNumberOfThreadsGivesTheSameState) {
 }
 
 TEST(WideSolver, AnUnknownInstructionSetIsRefused) {
-  EXPECT_FALSE(useContactKernelTarget("NEON_BF16"));
-  EXPECT_FALSE(contactKernelTargets().empty());
+  EXPECT_FALSE(useSimdTarget("NEON_BF16"));
+  EXPECT_FALSE(simdTargets().empty());
 }
 
 // The choice is an explicit call (programs make it at start-up): IMPULSE2D_SIMD names one of the
