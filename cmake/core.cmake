@@ -25,7 +25,10 @@ endif()
 
 file(GLOB IMPULSE2D_SCENE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/scene/*.cpp)
 add_library(impulse2d_scene ${IMPULSE2D_SCENE_SOURCES})
-target_link_libraries(impulse2d_scene PUBLIC impulse2d_core PRIVATE yaml-cpp)
+# stb_image (libstb-dev) reads the occupancy maps' images.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+target_link_libraries(impulse2d_scene PUBLIC impulse2d_core PRIVATE yaml-cpp PkgConfig::STB)
 set_target_properties(impulse2d_scene PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 file(GLOB IMPULSE2D_DEVICE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/devices/*.cpp)

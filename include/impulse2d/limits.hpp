@@ -28,6 +28,8 @@ constexpr std::size_t kMaxSceneBytes = 16u << 20;
 constexpr std::size_t kMaxPendingWrenches = 4096;
 /// Devices (drives, lasers, bumpers) of one world; each costs the node a few ROS connections.
 constexpr std::size_t kMaxDevices = 1024;
+/// Cells of one occupancy map (a byte each while it loads; 8000 x 8000).
+constexpr std::size_t kMaxMapCells = 64u << 20;
 /// Beams of one laser (a ray cast each per scan).
 constexpr int kMaxLaserBeams = 100000;
 /// m. Bodies are created, and may be placed, only within this distance of the origin on each

@@ -4,8 +4,10 @@
 
 #include <impulse2d/defs.hpp>
 #include <impulse2d/device_defs.hpp>
+#include <impulse2d/occupancy_map.hpp>
 #include <impulse2d/world.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,23 @@ struct SceneJoint {
   bool hasLength = false;  ///< distance joints: `length` given, else the current distance
 };
 
+/// One entry of `maps:`: an occupancy map in map_server's format as static walls.
+struct SceneMap {
+  std::string name;  ///< its first body's; the others are name/1, name/2, ...
+  std::string file;  ///< the map_server YAML, as resolved
+  OccupancyGrid grid;
+  size_t bodies = 0;  ///< how many of the scene's bodies are this map's
+};
+
+/// Where a scene's files are found.
+struct ScenePaths {
+  /// Relative file names are read from here ("": the working directory).
+  std::string folder;
+  /// The folder of a ROS package, for package://PACKAGE/...; empty with `error` set when there is
+  /// none. Without it, package:// names are refused.
+  std::function<std::string(const std::string& package, std::string* error)> findPackage;
+};
+
 struct Scene {
   WorldDef world;
   std::string plane = "xz";  ///< xz: vertical plane (2D y -> 3D z); xy: top-down
@@ -28,12 +47,18 @@ struct Scene {
   /// Devices attached to bodies of the scene or the world (device_defs.hpp). The world does not
   /// run them: a DeviceSet (devices.hpp) does, in the node and in impulse2d_sim.
   std::vector<DeviceDef> devices;
+  /// Occupancy maps (`maps:`): their walls are static bodies at the end of `bodies`.
+  std::vector<SceneMap> maps;
 };
 
 /// Parses and validates YAML text against the schema. On failure returns false and sets `error`
 /// to one line naming the key and the body or joint, e.g.
 ///   "bodies[3] 'box3': shapes[0].size: must be two numbers > 0".
 bool parseScene(const std::string& yamlText, Scene* out, std::string* error);
+/// The same, with the files it names (maps) found through `paths`.
+bool parseScene(const std::string& yamlText, const ScenePaths& paths, Scene* out,
+                std::string* error);
+/// Reads a scene file; the files it names are relative to its folder.
 bool loadSceneFile(const std::string& path, Scene* out, std::string* error);
 
 /// Adds every body and joint of `scene` to `world`, or nothing: names must not clash with bodies

@@ -56,12 +56,43 @@ void parseList(const Fields& top, const char* key, Item (*parse)(const YAML::Nod
   }
 }
 
-Scene parseDocument(const YAML::Node& doc) {
-  if (doc.IsNull()) {
-    throw SceneError("", "the scene is empty (expected world, bodies, joints, devices)");
+// `maps:`: each map's walls join the scene's bodies, after its own; their names may not clash.
+void parseMaps(const Fields& top, const ScenePaths& paths, Scene* scene) {
+  if (!top.has("maps")) return;
+  const YAML::Node& list = top.node("maps");
+  if (!list.IsNull() && !list.IsSequence()) throw SceneError("maps", "must be a list");
+  std::map<std::string, std::string> taken;  // body name -> who has it
+  for (size_t b = 0; b < scene->bodies.size(); ++b) {
+    taken.emplace(scene->bodies[b].name, "bodies[" + std::to_string(b) + "]");
   }
-  const Fields top(doc, "a scene (keys world, bodies, joints, devices)",
-                   {"world", "bodies", "joints", "devices"});
+  size_t i = 0;
+  for (const YAML::Node& node : list) {
+    const std::string context = entryContext("maps", i, node);
+    try {
+      std::vector<BodyDef> walls;
+      SceneMap map = parseMap(node, paths, &walls);
+      for (const BodyDef& wall : walls) {
+        const auto clash = taken.emplace(wall.name, context);
+        if (!clash.second) {
+          throw SceneError("name", "its body " + quoted(wall.name) + " is already " +
+                                       clash.first->second + "'s");
+        }
+      }
+      scene->maps.push_back(std::move(map));
+      for (BodyDef& wall : walls) scene->bodies.push_back(std::move(wall));
+    } catch (const SceneError& e) {
+      throw SceneError("", context + ": " + e.what());
+    }
+    ++i;
+  }
+}
+
+Scene parseDocument(const YAML::Node& doc, const ScenePaths& paths) {
+  if (doc.IsNull()) {
+    throw SceneError("", "the scene is empty (expected world, bodies, joints, devices, maps)");
+  }
+  const Fields top(doc, "a scene (keys world, bodies, joints, devices, maps)",
+                   {"world", "bodies", "joints", "devices", "maps"});
   Scene scene;
   if (top.has("world")) {
     try {
@@ -73,6 +104,7 @@ Scene parseDocument(const YAML::Node& doc) {
   parseList(top, "bodies", parseBody, &scene.bodies);
   parseList(top, "joints", parseJoint, &scene.joints);
   parseList(top, "devices", parseDevice, &scene.devices);
+  parseMaps(top, paths, &scene);
   return scene;
 }
 
@@ -91,6 +123,11 @@ bool fail(std::string* error, const std::string& message) {
 }  // namespace scene_detail
 
 bool parseScene(const std::string& yamlText, Scene* out, std::string* error) {
+  return parseScene(yamlText, ScenePaths(), out, error);
+}
+
+bool parseScene(const std::string& yamlText, const ScenePaths& paths, Scene* out,
+                std::string* error) {
   using scene_detail::fail;
   // yaml-cpp's node tree costs tens of times the text: refuse before parsing.
   if (yamlText.size() > kMaxSceneBytes) {
@@ -98,7 +135,7 @@ bool parseScene(const std::string& yamlText, Scene* out, std::string* error) {
                            std::to_string(kMaxSceneBytes) + " are accepted");
   }
   try {
-    Scene scene = scene_detail::parseDocument(scene_detail::loadSingleDocument(yamlText));
+    Scene scene = scene_detail::parseDocument(scene_detail::loadSingleDocument(yamlText), paths);
     if (out != nullptr) *out = std::move(scene);
     return true;
   } catch (const YAML::ParserException& e) {
@@ -129,8 +166,11 @@ bool loadSceneFile(const std::string& path, Scene* out, std::string* error) {
     }
   }
   if (file.bad()) return fail(error, path + ": cannot read (" + std::strerror(errno) + ")");
+  ScenePaths paths;
+  const size_t slash = path.find_last_of('/');
+  if (slash != std::string::npos) paths.folder = path.substr(0, slash + 1);
   std::string why;
-  if (!parseScene(text, out, &why)) return fail(error, path + ": " + why);
+  if (!parseScene(text, paths, out, &why)) return fail(error, path + ": " + why);
   return true;
 }
 

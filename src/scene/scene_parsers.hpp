@@ -16,6 +16,8 @@ BodyDef parseBody(const YAML::Node& node);
 SceneJoint parseJoint(const YAML::Node& node);
 /// One entry of `devices:`; its body is resolved by name only when the scene is added.
 DeviceDef parseDevice(const YAML::Node& node);
+/// One entry of `maps:`: reads its files and appends its walls to `walls`.
+SceneMap parseMap(const YAML::Node& node, const ScenePaths& paths, std::vector<BodyDef>* walls);
 
 }  // namespace scene_detail
 }  // namespace impulse2d
