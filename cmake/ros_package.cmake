@@ -1,7 +1,7 @@
 # The catkin side: dependencies, message generation and the package declaration.
 find_package(catkin REQUIRED COMPONENTS
   diagnostic_updater geometry_msgs message_generation nav_msgs nodelet pluginlib roscpp
-  rosgraph_msgs sensor_msgs std_msgs std_srvs tf2_msgs tf2_ros visualization_msgs)
+  rosgraph_msgs roslib sensor_msgs std_msgs std_srvs tf2_msgs tf2_ros visualization_msgs)
 
 add_message_files(DIRECTORY msg FILES
   Body.msg Contact.msg ContactArray.msg Joint.msg JointCommand.msg Shape.msg)

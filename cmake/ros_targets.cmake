@@ -14,8 +14,10 @@ add_library(impulse2d_ros STATIC
   src/ros/scene_param.cpp
   src/ros/sim_world.cpp
   src/ros/sim_world_devices.cpp
+  src/ros/sim_world_maps.cpp
   src/ros/sim_world_queries.cpp
   src/ros/world_devices.cpp
+  src/ros/world_maps.cpp
   src/ros/world_node.cpp
   src/ros/world_publish.cpp
   src/ros/world_services.cpp)
@@ -66,6 +68,14 @@ if(CATKIN_ENABLE_TESTING)
   add_dependencies(impulse2d_devices_tests impulse2d_node impulse2d_nodelet
     ${PROJECT_NAME}_generate_messages_cpp)
   add_rostest(test/ros/devices_nodelet.test DEPENDENCIES impulse2d_devices_tests)
+
+  # Occupancy maps: a scene's, ~map, ~map_topic; as node and as nodelet.
+  add_rostest_gtest(impulse2d_maps_tests test/ros/maps.test test/ros/maps_test.cpp
+    test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
+  target_link_libraries(impulse2d_maps_tests ${catkin_LIBRARIES})
+  add_dependencies(impulse2d_maps_tests impulse2d_node impulse2d_nodelet
+    ${PROJECT_NAME}_generate_messages_cpp)
+  add_rostest(test/ros/maps_nodelet.test DEPENDENCIES impulse2d_maps_tests)
 
   roslaunch_add_file_check(launch/world.launch)
   roslaunch_add_file_check(launch/robot_demo.launch rviz:=false)

@@ -45,11 +45,21 @@ SimWorld::SimWorld() : world_(std::make_unique<World>()), devices_(std::make_uni
 
 SimWorld::~SimWorld() = default;
 
+void SimWorld::setPackageFinder(std::function<std::string(const std::string&, std::string*)> find) {
+  findPackage_ = std::move(find);
+}
+
+bool SimWorld::parse(const std::string& yamlText, Scene* scene, std::string* error) const {
+  ScenePaths paths;
+  paths.findPackage = findPackage_;
+  return parseScene(yamlText, paths, scene, error);
+}
+
 bool SimWorld::loadStartScene(const std::string& yamlText, std::string* error) {
   startDevices_.clear();
   startDevicesAttached_ = false;
   Scene scene;
-  if (!parseScene(yamlText, &scene, error)) {
+  if (!parse(yamlText, &scene, error)) {
     startYaml_.clear();
     restoreStart();
     return false;
@@ -90,21 +100,27 @@ void SimWorld::restoreStart() {
   scans_.clear();
   imuReadings_.clear();
   bumperChanges_.clear();
+  maps_.clear();
+  ++mapVersion_;
   ++staticVersion_;
   if (!startYaml_.empty()) {
-    // The start scene was checked when it was loaded, so this cannot fail.
+    // The start scene was checked when it was loaded, so this cannot fail (unless a map's file
+    // changed since: it is read again).
     Scene scene;
     std::string error;
-    if (parseScene(startYaml_, &scene, &error)) {
+    if (parse(startYaml_, &scene, &error)) {
       world_ = std::make_unique<World>(scene.world);
       frameId_ = scene.frameId;
       plane_ = scene.plane;
       scene.devices.clear();
-      impulse2d::addScene(scene, *world_, &error);
+      if (impulse2d::addScene(scene, *world_, &error)) {
+        for (SceneMap& map : scene.maps) maps_.push_back({map.name, std::move(map.grid)});
+      }
     }
   }
   if (threads_ > 0) world_->settings().threads = threads_;
   respawnStartUrdfs();
+  addFollowedWalls();
   if (startDevicesAttached_) {
     std::string error;
     addDevices(startDevices_, &error);  // attached once onto the same world: cannot fail
@@ -122,12 +138,14 @@ int SimWorld::threads() const { return world_->settings().threads; }
 
 bool SimWorld::addScene(const std::string& yamlText, std::string* error) {
   Scene scene;
-  if (!parseScene(yamlText, &scene, error)) return false;
+  if (!parse(yamlText, &scene, error)) return false;
   // Checked against the devices here before anything is added; addScene checks their bodies.
   *error = devices_->check(scene.devices, deviceContext());
   if (!error->empty()) return false;
   if (!impulse2d::addScene(scene, *world_, error)) return false;
   addDevices(scene.devices, error);  // checked above: cannot fail
+  for (SceneMap& map : scene.maps) maps_.push_back({map.name, std::move(map.grid)});
+  if (!scene.maps.empty()) ++mapVersion_;
   ++staticVersion_;
   return true;
 }

@@ -9,6 +9,7 @@
 
 #include <impulse2d/defs.hpp>
 #include <impulse2d/device_defs.hpp>
+#include <impulse2d/occupancy_map.hpp>
 #include <impulse2d/profile.hpp>
 
 #include <Eigen/Geometry>
@@ -20,6 +21,8 @@
 #include <vector>
 
 namespace impulse2d {
+
+struct Scene;  // scene.hpp, which the node's headers leave out (see ImuReading)
 
 class World;
 class DeviceSet;
@@ -186,6 +189,12 @@ struct UrdfSpawned {
   std::vector<std::string> bodies, joints, warnings;
 };
 
+/// An occupancy map the world's walls came from (a scene's `maps:`), for ~map.
+struct LoadedMap {
+  std::string name;
+  OccupancyGrid grid;
+};
+
 /// Not thread-safe: the node serialises every call with its own mutex.
 /// Every mutating call either succeeds or leaves the world unchanged and sets `error` to one
 /// line naming the request field.
@@ -290,6 +299,21 @@ class SimWorld {
   const std::string& plane() const { return plane_; }
   /// Changes whenever static bodies may have been added, moved or removed.
   uint64_t staticVersion() const { return staticVersion_; }
+  /// How scenes find package://PACKAGE/... files: the package's folder, or "" with `error` set.
+  /// Unset, such names are refused.
+  void setPackageFinder(std::function<std::string(const std::string&, std::string*)> find);
+  /// The maps of the start scene and of the scenes added since, in that order.
+  const std::vector<LoadedMap>& maps() const { return maps_; }
+  /// What ~map shows: the followed map (followMap) if there is one, else the last of maps(), or
+  /// null.
+  const LoadedMap* latestMap() const;
+  /// Changes whenever latestMap() may have.
+  uint64_t mapVersion() const { return mapVersion_; }
+  /// Walls from an occupancy grid (a map topic), static bodies named `name`, `name/1`, ...:
+  /// they replace the last grid's, and are put back after reset(). A grid that is malformed,
+  /// too large, or whose walls cannot join the world (a name taken, a limit) leaves the world as
+  /// it was.
+  bool followMap(const std::string& name, OccupancyGrid grid, std::string* error);
 
   size_t bodyCount() const;
   size_t contactCount() const;
@@ -307,6 +331,10 @@ class SimWorld {
     uint64_t stepsLeft = 0;
   };
   void restoreStart();
+  /// Adds the followed map's walls (after a reset); forgets the map if they cannot be added.
+  void addFollowedWalls();
+  /// parseScene with the package finder.
+  bool parse(const std::string& yamlText, impulse2d::Scene* scene, std::string* error) const;
   /// A contact point with its bodies named (the ~contacts topic and the bumpers).
   ContactSnapshot snapshotOf(const ContactInfo& contact) const;
   /// A URDF joint in the world with what converts between the URDF's and the world's sense.
@@ -347,6 +375,10 @@ class SimWorld {
   uint64_t steps_ = 0;
   int64_t simTimeNs_ = 0;
   uint64_t staticVersion_ = 0;
+  std::function<std::string(const std::string&, std::string*)> findPackage_;
+  std::vector<LoadedMap> maps_;
+  std::unique_ptr<LoadedMap> followed_;  ///< followMap's last grid
+  uint64_t mapVersion_ = 0;
   std::vector<BodyLoss> losses_;
   uint64_t removedCount_ = 0;
   uint64_t lostCount_ = 0;

@@ -19,7 +19,7 @@ void WorldNode::setUpDevices() {
     }
   };
   std::vector<std::string> reserved;
-  for (const char* own : {"contacts", "markers", "joint_command", "removed_bodies"}) {
+  for (const char* own : {"contacts", "markers", "joint_command", "removed_bodies", "map"}) {
     reserved.push_back(resolve(own));
   }
   reserved.push_back(nh_.resolveName("joint_states"));

@@ -44,6 +44,7 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, cons
   const std::string simd = useSimdTargetFromEnvironment();  // before the first step
   if (!simd.empty()) ROS_WARN("[%s] %s", name_.c_str(), simd.c_str());
   setUpDevices();
+  setUpMaps();
   loadStartScene();
   loadStartUrdf();
   // The scene's devices come last: they may name the URDF model's bodies.
@@ -79,6 +80,7 @@ WorldNode::~WorldNode() {
   publishTimer_.stop();
   for (ros::ServiceServer& s : services_) s.shutdown();
   jointCommandSub_.shutdown();
+  mapSub_.shutdown();
   deviceEndpoints_->shutdown();
 }
 
@@ -141,6 +143,7 @@ void WorldNode::advertise() {
   diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_, name_);
   diagnostics_->setHardwareID("impulse2d");
   diagnostics_->add("world", this, &WorldNode::diagnose);
+  advertiseMaps();
 }
 
 void WorldNode::restartSchedule() {

@@ -24,6 +24,7 @@
 #include <impulse2d/SpawnBody.h>
 #include <impulse2d/SpawnUrdf.h>
 #include <impulse2d/Step.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 
@@ -114,6 +115,13 @@ class WorldNode {
   bool rayCast(RayCast::Request& req, RayCast::Response& res);
   bool queryPoint(QueryPoint::Request& req, QueryPoint::Response& res);
 
+  // Maps (world_maps.cpp): package:// for scenes, ~map, ~map_topic.
+  void setUpMaps();
+  void advertiseMaps();
+  void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
+  /// Publishes ~map when the maps changed; takes the Lock.
+  void publishMap();
+
   // URDF models, joint_states and joint motors (urdf_services.cpp).
   void loadStartUrdf();
   void advertiseUrdf();
@@ -159,10 +167,13 @@ class WorldNode {
   bool staticPublished_ = false;
   bool tfPublished_ = false;
   ros::Time lastTfStamp_;
+  uint64_t publishedMapVersion_ = 0;
+  bool mapPublished_ = false;
+  std::string followedMapName_ = "map";  ///< ~map_name, set once before the subscriber starts
 
   ros::Publisher tfPub_, tfStaticPub_, clockPub_, contactsPub_, markersPub_, removedBodiesPub_;
-  ros::Publisher jointStatesPub_;
-  ros::Subscriber jointCommandSub_;
+  ros::Publisher jointStatesPub_, mapPub_;
+  ros::Subscriber jointCommandSub_, mapSub_;
   std::unique_ptr<DeviceEndpoints> deviceEndpoints_;
   std::mutex deviceSyncMutex_;        // one syncDevices() at a time
   uint64_t syncedDeviceVersion_ = 0;  // guarded by deviceSyncMutex_

@@ -96,6 +96,7 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
 
   publishJointStates(scene.stamp, jointReadings);
   publishRemovedBodies();
+  publishMap();
 
   if (wantContacts) {
     impulse2d::ContactArray msg;
