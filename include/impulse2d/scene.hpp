@@ -60,6 +60,13 @@ bool parseScene(const std::string& yamlText, const ScenePaths& paths, Scene* out
                 std::string* error);
 /// Reads a scene file; the files it names are relative to its folder.
 bool loadSceneFile(const std::string& path, Scene* out, std::string* error);
+/// The same, with `findPackage` for package:// names (paths.folder is the file's own).
+bool loadSceneFile(const std::string& path, const ScenePaths& paths, Scene* out,
+                   std::string* error);
+/// A package finder without ROS (impulse2d_sim): for the first entry E of $ROS_PACKAGE_PATH
+/// (colon-separated, as a sourced workspace sets it) where E/PACKAGE/package.xml exists, or
+/// whose own package.xml names PACKAGE, that folder; else "" with `error` set.
+std::string findPackageOnPath(const std::string& package, std::string* error);
 
 /// Adds every body and joint of `scene` to `world`, or nothing: names must not clash with bodies
 /// or joints already in the world, and joints and devices may name bodies of the scene or of the

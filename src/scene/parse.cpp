@@ -9,8 +9,10 @@
 #include "yaml_fields.hpp"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 namespace impulse2d {
@@ -152,6 +154,36 @@ bool parseScene(const std::string& yamlText, const ScenePaths& paths, Scene* out
 }
 
 bool loadSceneFile(const std::string& path, Scene* out, std::string* error) {
+  return loadSceneFile(path, ScenePaths(), out, error);
+}
+
+std::string findPackageOnPath(const std::string& package, std::string* error) {
+  const char* list = std::getenv("ROS_PACKAGE_PATH");
+  std::string entries = list == nullptr ? "" : list;
+  size_t start = 0;
+  while (start <= entries.size()) {
+    size_t end = entries.find(':', start);
+    if (end == std::string::npos) end = entries.size();
+    std::string entry = entries.substr(start, end - start);
+    while (entry.size() > 1 && entry.back() == '/') entry.pop_back();
+    start = end + 1;
+    if (entry.empty()) continue;
+    const std::string inside = entry + "/" + package;
+    if (std::ifstream(inside + "/package.xml").good()) return inside;
+    // The entry may be the package's own folder, whatever its name: its package.xml says.
+    std::ifstream own(entry + "/package.xml");
+    const std::string xml((std::istreambuf_iterator<char>(own)), std::istreambuf_iterator<char>());
+    if (xml.find("<name>" + package + "</name>") != std::string::npos) return entry;
+  }
+  if (error != nullptr) {
+    *error = "no package named '" + package + "' on ROS_PACKAGE_PATH (" +
+             (list == nullptr ? "not set: source a workspace's devel/setup.bash" : entries) + ")";
+  }
+  return "";
+}
+
+bool loadSceneFile(const std::string& path, const ScenePaths& base, Scene* out,
+                   std::string* error) {
   using scene_detail::fail;
   std::ifstream file(path, std::ios::binary);
   if (!file) return fail(error, path + ": cannot open (" + std::strerror(errno) + ")");
@@ -166,7 +198,8 @@ bool loadSceneFile(const std::string& path, Scene* out, std::string* error) {
     }
   }
   if (file.bad()) return fail(error, path + ": cannot read (" + std::strerror(errno) + ")");
-  ScenePaths paths;
+  ScenePaths paths = base;
+  paths.folder.clear();
   const size_t slash = path.find_last_of('/');
   if (slash != std::string::npos) paths.folder = path.substr(0, slash + 1);
   std::string why;

@@ -6,6 +6,7 @@
 #include "scene_parsers.hpp"
 #include "yaml_fields.hpp"
 
+#include <cctype>
 #include <cmath>
 
 namespace impulse2d {
@@ -20,13 +21,19 @@ std::string resolvePath(const std::string& name, const ScenePaths& paths) {
     if (slash == std::string::npos || slash == 0) {
       throw SceneError("file", "must be package://PACKAGE/PATH, not " + quoted(name));
     }
+    const std::string package = rest.substr(0, slash);
+    for (const char c : package) {
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) {
+        throw SceneError("file", "package://" + package + ": not a ROS package name (REP 144)");
+      }
+    }
     if (!paths.findPackage) {
       throw SceneError("file",
-                       "package:// names need ROS to find the package (the node "
-                       "reads them; impulse2d_sim takes a path)");
+                       "package:// names need a package finder (the node and "
+                       "impulse2d_sim have one)");
     }
     std::string why;
-    const std::string folder = paths.findPackage(rest.substr(0, slash), &why);
+    const std::string folder = paths.findPackage(package, &why);
     if (folder.empty()) throw SceneError("file", why);
     return folder + rest.substr(slash);
   }

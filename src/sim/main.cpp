@@ -116,7 +116,9 @@ void printProfile(const StepProfile& sum, uint64_t steps) {
 int run(const Options& options) {
   Scene scene;
   std::string error;
-  if (!loadSceneFile(options.scenePath, &scene, &error)) return fail(kExitUsage, error);
+  ScenePaths paths;
+  paths.findPackage = findPackageOnPath;  // package:// through $ROS_PACKAGE_PATH, without ROS
+  if (!loadSceneFile(options.scenePath, paths, &scene, &error)) return fail(kExitUsage, error);
   World world(applyOverrides(options, scene.world));
   if (!addScene(scene, world, &error)) return fail(kExitUsage, options.scenePath + ": " + error);
   // Devices are checked as the node checks them. Without ROS nothing commands a drive, so each

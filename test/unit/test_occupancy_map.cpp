@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <string>
@@ -232,7 +233,7 @@ TEST(OccupancyMap, ASceneMapsWallsThatRaysAndBodiesMeetAtTheCells) {
   // package:// needs ROS to find the package.
   EXPECT_FALSE(
       parseScene("maps: [{name: m, file: package://impulse2d/maps/x.yaml}]", &scene, &error));
-  EXPECT_NE(error.find("package:// names need ROS"), std::string::npos) << error;
+  EXPECT_NE(error.find("package:// names need a package finder"), std::string::npos) << error;
   ScenePaths paths;
   paths.findPackage = [&](const std::string& package, std::string* why) -> std::string {
     if (package == "floors") return folder.path() + "sub";
@@ -242,8 +243,29 @@ TEST(OccupancyMap, ASceneMapsWallsThatRaysAndBodiesMeetAtTheCells) {
   EXPECT_FALSE(
       parseScene("maps: [{name: m, file: package://nowhere/x.yaml}]", paths, &scene, &error));
   EXPECT_NE(error.find("maps[0] 'm': file: no package named nowhere"), std::string::npos) << error;
+  EXPECT_FALSE(
+      parseScene("maps: [{name: m, file: package://../etc/x.yaml}]", paths, &scene, &error));
+  EXPECT_NE(error.find("not a ROS package name"), std::string::npos) << error;
   paths.folder = folder.path();
   ASSERT_TRUE(parseScene("maps: [{name: m, file: room.yaml}]", paths, &scene, &error)) << error;
+}
+
+TEST(OccupancyMap, PackagesAreFoundOnRosPackagePathWithoutRos) {
+  TempFolder folder;
+  folder.write("package.xml", "<package><name>my_maps</name></package>");
+  const char* saved = std::getenv("ROS_PACKAGE_PATH");
+  const std::string before = saved == nullptr ? "" : saved;
+  setenv("ROS_PACKAGE_PATH", ("/nonexistent:" + folder.path()).c_str(), 1);
+  std::string error;
+  // The entry is the package itself (its package.xml names it).
+  EXPECT_EQ(findPackageOnPath("my_maps", &error) + "/", folder.path());
+  EXPECT_EQ(findPackageOnPath("other", &error), "");
+  EXPECT_NE(error.find("no package named 'other' on ROS_PACKAGE_PATH"), std::string::npos) << error;
+  if (saved == nullptr) {
+    unsetenv("ROS_PACKAGE_PATH");
+  } else {
+    setenv("ROS_PACKAGE_PATH", before.c_str(), 1);
+  }
 }
 
 }  // namespace
