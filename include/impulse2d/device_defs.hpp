@@ -58,6 +58,9 @@ struct DriveDef {
   /// geometry_msgs/Twist: linear.x (m/s), linear.y (m/s, omni only), angular.z (rad/s)
   std::string cmdVelTopic = "cmd_vel";
   std::string odomTopic = "odom";  ///< nav_msgs/Odometry
+  /// nav_msgs/Odometry of the body's true pose and twist in the world frame (flatland's
+  /// odometry/ground_truth, Stage's base_pose_ground_truth); "": groundTruthTopicOf() derives it.
+  std::string groundTruthTopic;
   std::string odomFrame = "odom";  ///< tf odom_frame -> body
   bool publishTf = true;
   /// With publishTf: the world frame -> odom_frame from the ground truth, so that world -> odom
@@ -105,6 +108,20 @@ struct LaserDef {
 struct BumperDef {
   std::string topic = "bumper";  ///< impulse2d/ContactArray
 };
+
+/// A drive's ground-truth topic: groundTruthTopic if given, else beside its odometry: the last
+/// segment `odom` becomes `ground_truth` (odom -> ground_truth, r1/odom -> r1/ground_truth), any
+/// other odometry topic T gets T_ground_truth.
+inline std::string groundTruthTopicOf(const DriveDef& def) {
+  if (!def.groundTruthTopic.empty()) return def.groundTruthTopic;
+  const std::string& odom = def.odomTopic;
+  const size_t slash = odom.find_last_of('/');
+  const size_t last = slash == std::string::npos ? 0 : slash + 1;
+  if (odom.compare(last, std::string::npos, "odom") == 0) {
+    return odom.substr(0, last) + "ground_truth";
+  }
+  return odom + "_ground_truth";
+}
 
 /// An inertial measurement unit at a point of the body (top-down worlds), as sensor_msgs/Imu
 /// reads: orientation (yaw in the plane, REP 145), angular velocity, and linear acceleration as

@@ -19,7 +19,9 @@ std::vector<std::pair<std::string, const char*>> topicsOf(const DeviceDef& def) 
     case DeviceType::DiffDrive:
     case DeviceType::Omni:
     case DeviceType::Ackermann:
-      return {{def.drive.cmdVelTopic, "cmd_vel_topic"}, {def.drive.odomTopic, "odom_topic"}};
+      return {{def.drive.cmdVelTopic, "cmd_vel_topic"},
+              {def.drive.odomTopic, "odom_topic"},
+              {groundTruthTopicOf(def.drive), "ground_truth_topic"}};
     case DeviceType::Laser:
       return {{def.laser.topic, "topic"}};
     case DeviceType::Bumper:

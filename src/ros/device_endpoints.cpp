@@ -16,7 +16,7 @@ std::string signatureOf(const DeviceDef& d) {
     case DeviceType::Omni:
     case DeviceType::Ackermann:
       return std::string(deviceTypeName(d.type)) + " " + d.drive.cmdVelTopic + " " +
-             d.drive.odomTopic;
+             d.drive.odomTopic + " " + groundTruthTopicOf(d.drive);
     case DeviceType::Laser:
       return "laser " + d.laser.topic;
     case DeviceType::Bumper:
@@ -42,6 +42,8 @@ std::shared_ptr<DeviceEndpoints::Endpoint> DeviceEndpoints::open(const DeviceDef
     case DeviceType::Omni:
     case DeviceType::Ackermann: {
       endpoint->publisher = pnh_.advertise<nav_msgs::Odometry>(device.drive.odomTopic, 10);
+      endpoint->groundTruth =
+          pnh_.advertise<nav_msgs::Odometry>(groundTruthTopicOf(device.drive), 10);
       const std::string name = device.name;
       CmdVelHandler handler = onCmdVel_;
       endpoint->cmdVel = pnh_.subscribe<geometry_msgs::Twist>(
@@ -89,6 +91,7 @@ void DeviceEndpoints::sync(const std::vector<DeviceDef>& devices) {
   for (const std::shared_ptr<Endpoint>& endpoint : closing) {
     endpoint->cmdVel.shutdown();
     endpoint->publisher.shutdown();
+    endpoint->groundTruth.shutdown();
   }
   std::map<std::string, std::shared_ptr<Endpoint>> opened;
   for (const DeviceDef* d : opening) opened[d->name] = open(*d);
@@ -105,6 +108,7 @@ void DeviceEndpoints::shutdown() {
   for (auto& [name, endpoint] : all) {
     endpoint->cmdVel.shutdown();
     endpoint->publisher.shutdown();
+    endpoint->groundTruth.shutdown();
   }
 }
 
@@ -115,6 +119,17 @@ std::vector<std::pair<std::string, bool>> DeviceEndpoints::demand() const {
     out.emplace_back(name, endpoint->publisher.getNumSubscribers() > 0);
   }
   return out;
+}
+
+bool DeviceEndpoints::wantsGroundTruth(const std::string& device) const {
+  const std::shared_ptr<Endpoint> endpoint = find(device);
+  return endpoint && endpoint->groundTruth.getNumSubscribers() > 0;
+}
+
+void DeviceEndpoints::publishGroundTruth(const std::string& device,
+                                         const nav_msgs::Odometry& message) const {
+  const std::shared_ptr<Endpoint> endpoint = find(device);
+  if (endpoint) endpoint->groundTruth.publish(message);
 }
 
 std::shared_ptr<DeviceEndpoints::Endpoint> DeviceEndpoints::find(const std::string& device) const {

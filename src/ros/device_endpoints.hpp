@@ -6,6 +6,7 @@
 #include "sim_world.hpp"
 
 #include <geometry_msgs/Twist.h>
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 
 #include <functional>
@@ -45,12 +46,16 @@ class DeviceEndpoints {
     if (endpoint && endpoint->publisher.getNumSubscribers() > 0)
       endpoint->publisher.publish(message);
   }
+  /// Whether anyone listens to the named drive's ground truth, and publishing it.
+  bool wantsGroundTruth(const std::string& device) const;
+  void publishGroundTruth(const std::string& device, const nav_msgs::Odometry& message) const;
 
  private:
   struct Endpoint {
-    std::string signature;     // type and topics: a device whose signature changed is reopened
-    ros::Publisher publisher;  // odom, scan or bumper
-    ros::Subscriber cmdVel;    // drives
+    std::string signature;       // type and topics: a device whose signature changed is reopened
+    ros::Publisher publisher;    // odom, scan, imu or bumper
+    ros::Publisher groundTruth;  // drives
+    ros::Subscriber cmdVel;      // drives
   };
   std::shared_ptr<Endpoint> open(const DeviceDef& device);
   std::shared_ptr<Endpoint> find(const std::string& device) const;

@@ -70,6 +70,25 @@ nav_msgs::Odometry toOdometry(Plane plane, const OdometryReading& odom, const ro
   return msg;
 }
 
+nav_msgs::Odometry toGroundTruth(Plane plane, const std::string& worldFrame,
+                                 const OdometryReading& odom, const ros::Time& stamp) {
+  nav_msgs::Odometry msg;
+  msg.header.frame_id = worldFrame;
+  msg.header.stamp = stamp;
+  msg.child_frame_id = odom.body;
+  msg.pose.pose = toPose(plane, odom.truePosition, odom.trueAngle);
+  const Vec2 v = Rot(odom.trueAngle).applyInverse(odom.trueVelocity);  // in the body's frame
+  msg.twist.twist.linear.x = v.x();
+  if (plane == Plane::XY) {
+    msg.twist.twist.linear.y = v.y();
+    msg.twist.twist.angular.z = odom.trueTurnRate;
+  } else {
+    msg.twist.twist.linear.z = v.y();
+    msg.twist.twist.angular.y = -odom.trueTurnRate;
+  }
+  return msg;
+}
+
 geometry_msgs::TransformStamped odomToBody(Plane plane, const OdometryReading& odom,
                                            const ros::Time& stamp) {
   geometry_msgs::TransformStamped t = stamped(odom.def.odomFrame, odom.body, stamp);

@@ -24,6 +24,11 @@ constexpr double kUnusedVariance = 1e6;
 /// body frame (linear.x, angular about the plane's normal), the variances on the diagonals.
 nav_msgs::Odometry toOdometry(Plane plane, const OdometryReading& odom, const ros::Time& stamp);
 
+/// nav_msgs/Odometry of the body's true pose in `worldFrame` and its true twist in the body
+/// frame (REP 105: the twist is the child's), covariances 0: exact.
+nav_msgs::Odometry toGroundTruth(Plane plane, const std::string& worldFrame,
+                                 const OdometryReading& odom, const ros::Time& stamp);
+
 /// odom_frame -> body, from the odometry.
 geometry_msgs::TransformStamped odomToBody(Plane plane, const OdometryReading& odom,
                                            const ros::Time& stamp);

@@ -121,6 +121,8 @@ struct OdometryReading {
   double turnRate = 0.0;             ///< rad/s
   Vec2 truePosition = Vec2::Zero();  ///< the body in the world
   double trueAngle = 0.0;
+  Vec2 trueVelocity = Vec2::Zero();  ///< m/s of the body's origin, world frame
+  double trueTurnRate = 0.0;         ///< rad/s
 };
 
 /// One scan of a laser, taken after the step that ended at stampNs.

@@ -97,6 +97,8 @@ std::vector<OdometryReading> SimWorld::odometry() const {
     r.turnRate = device.drive->turnRate();
     r.truePosition = body.xf.p;
     r.trueAngle = body.angle;
+    r.trueVelocity = body.velocityAt(body.xf.p);
+    r.trueTurnRate = body.angularVelocity;
     out.push_back(std::move(r));
   }
   return out;

@@ -85,6 +85,10 @@ void WorldNode::publishOdometry(Plane plane, const std::string& worldFrame, cons
                                 std::vector<std::string>* driven) {
   for (const OdometryReading& odom : odometry) {
     deviceEndpoints_->publish(odom.device, toOdometry(plane, odom, stamp));
+    if (deviceEndpoints_->wantsGroundTruth(odom.device)) {
+      deviceEndpoints_->publishGroundTruth(odom.device,
+                                           toGroundTruth(plane, worldFrame, odom, stamp));
+    }
     if (!odom.def.publishTf) continue;
     tf->push_back(odomToBody(plane, odom, stamp));
     if (odom.def.groundTruthTf) tf->push_back(worldToOdom(plane, worldFrame, odom, stamp));

@@ -32,17 +32,17 @@ struct TypeKeys {
 
 const TypeKeys kTypeKeys[] = {
     {DeviceType::DiffDrive,
-     {"cmd_vel_topic", "odom_topic", "odom_frame", "publish_tf", "ground_truth_tf",
-      "max_linear_accel", "max_angular_accel", "cmd_timeout", "max_force", "max_torque",
-      "pose_variance", "twist_variance"}},
+     {"cmd_vel_topic", "odom_topic", "ground_truth_topic", "odom_frame", "publish_tf",
+      "ground_truth_tf", "max_linear_accel", "max_angular_accel", "cmd_timeout", "max_force",
+      "max_torque", "pose_variance", "twist_variance"}},
     {DeviceType::Omni,
-     {"cmd_vel_topic", "odom_topic", "odom_frame", "publish_tf", "ground_truth_tf",
-      "max_linear_accel", "max_angular_accel", "cmd_timeout", "max_force", "max_torque",
-      "pose_variance", "twist_variance"}},
+     {"cmd_vel_topic", "odom_topic", "ground_truth_topic", "odom_frame", "publish_tf",
+      "ground_truth_tf", "max_linear_accel", "max_angular_accel", "cmd_timeout", "max_force",
+      "max_torque", "pose_variance", "twist_variance"}},
     {DeviceType::Ackermann,
-     {"cmd_vel_topic", "odom_topic", "odom_frame", "publish_tf", "ground_truth_tf",
-      "max_linear_accel", "cmd_timeout", "max_force", "max_torque", "pose_variance",
-      "twist_variance", "wheelbase", "max_steering_angle", "steering_rate"}},
+     {"cmd_vel_topic", "odom_topic", "ground_truth_topic", "odom_frame", "publish_tf",
+      "ground_truth_tf", "max_linear_accel", "cmd_timeout", "max_force", "max_torque",
+      "pose_variance", "twist_variance", "wheelbase", "max_steering_angle", "steering_rate"}},
     {DeviceType::Laser,
      {"offset", "topic", "range_min", "range_max", "angle_min", "angle_max", "angle_increment",
       "update_rate", "noise_stddev", "seed", "flip"}},
@@ -107,6 +107,11 @@ DriveDef parseDrive(const Fields& f, DeviceType type) {
   d.odomTopic = topic(f, "odom_topic", d.odomTopic);
   if (d.odomTopic == d.cmdVelTopic)
     throw SceneError("odom_topic", "must differ from cmd_vel_topic");
+  if (f.has("ground_truth_topic")) d.groundTruthTopic = topic(f, "ground_truth_topic", "");
+  const std::string truth = groundTruthTopicOf(d);
+  if (truth == d.odomTopic || truth == d.cmdVelTopic) {
+    throw SceneError("ground_truth_topic", "must differ from odom_topic and cmd_vel_topic");
+  }
   if (f.has("odom_frame")) d.odomFrame = f.name("odom_frame");
   d.publishTf = f.boolean("publish_tf", d.publishTf);
   d.groundTruthTf = f.boolean("ground_truth_tf", d.groundTruthTf);
@@ -251,6 +256,7 @@ DeviceDef parseDevice(const YAML::Node& node) {
                   "body",
                   "cmd_vel_topic",
                   "odom_topic",
+                  "ground_truth_topic",
                   "odom_frame",
                   "publish_tf",
                   "ground_truth_tf",

@@ -37,6 +37,7 @@ TEST_F(Devices, AnOmniBaseMovesSidewaysAndItsOdometrySaysSo) {
   PausedWorld paused;
   emptyCall("reset");
   Latest<nav_msgs::Odometry> odom(worldNs() + "/base/odom");
+  Latest<nav_msgs::Odometry> truth(worldNs() + "/base/ground_truth");
   CmdVel cmdVel("base/cmd_vel");
   cmdVel.send(0.0, 0.0, 0.5);  // linear.y: 0.5 m/s to the left
   stepFromFirstMotion("rover", 199);
@@ -58,6 +59,19 @@ TEST_F(Devices, AnOmniBaseMovesSidewaysAndItsOdometrySaysSo) {
   EXPECT_EQ(odom.get()->header.frame_id, "base_odom");
   EXPECT_NEAR(odom.get()->twist.twist.linear.y, 0.5, 1e-9);
   EXPECT_NEAR(odom.get()->twist.twist.linear.x, 0.0, 1e-9);
+  // The ground truth beside it (base/odom -> base/ground_truth): the body's own pose in the world
+  // frame and its twist in its own frame, as ~get_body_state has them.
+  ASSERT_TRUE(getState("rover", &state));
+  ASSERT_TRUE(waitFor(
+      [&] {
+        const nav_msgs::Odometry::ConstPtr m = truth.get();
+        return m && std::abs(m->pose.pose.position.y - state.pose.y) < 1e-9;
+      },
+      kWait));
+  EXPECT_EQ(truth.get()->header.frame_id, "world");
+  EXPECT_EQ(truth.get()->child_frame_id, "rover");
+  EXPECT_NEAR(truth.get()->pose.pose.position.x, state.pose.x, 1e-9);
+  EXPECT_NEAR(truth.get()->twist.twist.linear.y, 0.5, 1e-6);
 }
 
 TEST_F(Devices, AnAckermannCarTurnsNoTighterThanItsSteeringAllows) {

@@ -239,3 +239,34 @@ devices:
 
 }  // namespace
 }  // namespace impulse2d
+
+namespace impulse2d {
+namespace {
+
+TEST(DeviceSet, EachDrivePublishesItsGroundTruthBesideItsOdometry) {
+  DriveDef def;
+  EXPECT_EQ(groundTruthTopicOf(def), "ground_truth");
+  def.odomTopic = "r1/odom";
+  EXPECT_EQ(groundTruthTopicOf(def), "r1/ground_truth");
+  def.odomTopic = "/odom";
+  EXPECT_EQ(groundTruthTopicOf(def), "/ground_truth");
+  def.odomTopic = "wheel_odom";
+  EXPECT_EQ(groundTruthTopicOf(def), "wheel_odom_ground_truth");
+  def.groundTruthTopic = "truth";
+  EXPECT_EQ(groundTruthTopicOf(def), "truth");
+  // The derived topic is checked like the others.
+  World world(topDown());
+  test::addCircle(world, "robot", Vec2::Zero(), 0.25, BodyType::Dynamic);
+  DeviceDef drive = device(DeviceType::DiffDrive, "drive", "robot");
+  DeviceDef laser = device(DeviceType::Laser, "laser", "robot");
+  laser.laser.topic = "ground_truth";
+  DeviceSet set;
+  std::string error;
+  EXPECT_FALSE(set.add({drive, laser}, world, xyContext(), 0.0, &error));
+  EXPECT_EQ(error,
+            "devices[1] 'laser': topic: 'ground_truth' is already used by devices[0] 'drive' "
+            "(ground_truth_topic)");
+}
+
+}  // namespace
+}  // namespace impulse2d
