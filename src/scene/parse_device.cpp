@@ -157,15 +157,19 @@ bool seed(const Fields& f, uint32_t* out) {
   return true;
 }
 
-LaserDef parseLaser(const Fields& f) {
-  LaserDef l;
-  const Eigen::Vector3d offset =
-      f.vec3("offset", Eigen::Vector3d(l.offset.x(), l.offset.y(), l.offsetAngle));
+// A sensor's `offset` [x, y, theta] on its body, over the defaults in `at` and `angle`.
+void mountOffset(const Fields& f, Vec2* at, double* angle) {
+  const Eigen::Vector3d offset = f.vec3("offset", Eigen::Vector3d(at->x(), at->y(), *angle));
   if (!offset.allFinite() || offset.head<2>().cwiseAbs().maxCoeff() > kMaxCoordinate) {
     throw SceneError("offset", "must be three finite numbers (x, y, theta), x and y within 1e6 m");
   }
-  l.offset = offset.head<2>();
-  l.offsetAngle = offset.z();
+  *at = offset.head<2>();
+  *angle = offset.z();
+}
+
+LaserDef parseLaser(const Fields& f) {
+  LaserDef l;
+  mountOffset(f, &l.offset, &l.offsetAngle);
   l.topic = topic(f, "topic", l.topic);
   l.rangeMin = nonNegative(f, "range_min", l.rangeMin);
   l.rangeMax = positive(f, "range_max", l.rangeMax);
@@ -226,13 +230,7 @@ Eigen::Vector3d perAxis(const Fields& f, const char* key, bool isSigned, double 
 
 ImuDef parseImu(const Fields& f) {
   ImuDef u;
-  const Eigen::Vector3d offset =
-      f.vec3("offset", Eigen::Vector3d(u.offset.x(), u.offset.y(), u.offsetAngle));
-  if (!offset.allFinite() || offset.head<2>().cwiseAbs().maxCoeff() > kMaxCoordinate) {
-    throw SceneError("offset", "must be three finite numbers (x, y, theta), x and y within 1e6 m");
-  }
-  u.offset = offset.head<2>();
-  u.offsetAngle = offset.z();
+  mountOffset(f, &u.offset, &u.offsetAngle);
   u.topic = topic(f, "topic", u.topic);
   u.updateRate = positive(f, "update_rate", u.updateRate);
   if (u.updateRate > 1e6) throw SceneError("update_rate", "must be at most 1e6 Hz");
