@@ -51,9 +51,10 @@ void WorldImpl::updateSleep(double dt) {
   }
 
   for (int i = 0; i < slotCount; ++i) {
+    if (!movable[i]) continue;  // static bodies are never flagged: only dynamic ones join islands
     Body& body = bodies.items[i];
     body.islandFlag = 0;
-    if (!bodies.alive[i] || body.type != BodyType::Dynamic || !body.awake) continue;
+    if (body.type != BodyType::Dynamic || !body.awake) continue;
     const bool still = body.linearVelocity.squaredNorm() <= linTol2 &&
                        body.angularVelocity * body.angularVelocity <= angTol2;
     body.sleepTime = still ? body.sleepTime + dt : 0.0;
@@ -72,9 +73,9 @@ void WorldImpl::updateSleep(double dt) {
   // Flood fill from each awake dynamic body. A sleeping body reached from an awake one is woken:
   // something touches it.
   for (int seed = 0; seed < slotCount; ++seed) {
+    if (!movable[seed]) continue;
     Body& start = bodies.items[seed];
-    if (!bodies.alive[seed] || start.type != BodyType::Dynamic || !start.awake ||
-        start.islandFlag) {
+    if (start.type != BodyType::Dynamic || !start.awake || start.islandFlag) {
       continue;
     }
     island.clear();

@@ -5,7 +5,7 @@
 
 namespace impulse2d {
 
-void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
+void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& movable,
                            const Vec2& gravity, double h, const MotionLimits& limits,
                            const WeldClusters& clusters, StepWorkers& workers) {
   bodies_ = &bodies;
@@ -14,7 +14,7 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   const int blocks = (slots + kSlotsPerBlock - 1) / kSlotsPerBlock;
   auto rowOf = [&](int i) {  // 0: none, 1: a dynamic row, 2: a kinematic one
     const Body& body = bodies[i];
-    if (!alive[i] || !body.awake || body.type == BodyType::Static) return 0;
+    if (!movable[i] || !body.awake) return 0;
     const int cluster = clusters.clusterOf(i);
     if (cluster >= 0 && clusters.root(cluster) != i) return 0;  // the root's row moves it
     return body.type == BodyType::Dynamic ? 1 : 2;

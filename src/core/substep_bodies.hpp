@@ -61,9 +61,9 @@ class SubstepBodies {
   /// Dynamic bodies move within `limits` (motion_limits.hpp). A body whose velocity or load is
   /// not finite is held still with infinite mass instead, and listed in overflowed().
   /// Each welded cluster gets one row, its root's, which every member's slot reads and writes.
-  void gather(const std::vector<Body>& bodies, const std::vector<char>& alive, const Vec2& gravity,
-              double h, const MotionLimits& limits, const WeldClusters& clusters,
-              StepWorkers& workers);
+  void gather(const std::vector<Body>& bodies, const std::vector<char>& movable,
+              const Vec2& gravity, double h, const MotionLimits& limits,
+              const WeldClusters& clusters, StepWorkers& workers);
   const std::vector<int>& overflowed() const { return overflowed_; }
 
   /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).

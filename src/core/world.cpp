@@ -163,6 +163,8 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   body.id = BodyId{slot, w.bodies.generation[slot]};
   body.name = def.name;
   body.type = def.type;
+  if (slot >= static_cast<int>(w.movable.size())) w.movable.resize(slot + 1, 0);
+  w.movable[slot] = def.type == BodyType::Static ? 0 : 1;
   body.shapes = std::move(shapes);
   body.angle = def.angle;
   body.xf = Transform(def.position, Rot(def.angle));
@@ -212,6 +214,7 @@ bool World::destroyBody(BodyId id) {
   w.shapeCount -= body.shapes.size();
   if (!body.name.empty()) w.bodyByName.erase(body.name);
   w.bodies.release(id.index);
+  w.movable[id.index] = 0;
   w.jointsOfBody[id.index].clear();
   return true;
 }

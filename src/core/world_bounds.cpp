@@ -100,8 +100,9 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   std::vector<int>& candidates = lostCandidates;
   candidates.clear();
   for (size_t i = 0; i < bodies.items.size(); ++i) {
+    if (!movable[i]) continue;
     Body& body = bodies.items[i];
-    if (!bodies.alive[i] || body.type != BodyType::Dynamic || !body.awake) continue;
+    if (body.type != BodyType::Dynamic || !body.awake) continue;
     if (floor.top(body) > floor.deepest + floor.height) {
       candidates.push_back(static_cast<int>(i));
     } else {
@@ -113,8 +114,9 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   // A kinematic body below the static ones may still catch it.
   double floorLine = floor.deepest;
   for (size_t i = 0; i < bodies.items.size(); ++i) {
+    if (!movable[i]) continue;
     const Body& body = bodies.items[i];
-    if (bodies.alive[i] && body.type == BodyType::Kinematic) {
+    if (body.type == BodyType::Kinematic) {
       floorLine = std::max(floorLine, floor.bottom(body));
     }
   }
@@ -193,8 +195,9 @@ void World::removeEscapedBodies() {
   // sleeping ones have not moved since they were checked.
   std::vector<RemovedBody> escaped;
   for (size_t i = 0; i < w.bodies.items.size(); ++i) {
+    if (!w.movable[i]) continue;
     const Body& body = w.bodies.items[i];
-    if (!w.bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
+    if (!body.awake) continue;
     RemovalCause cause;
     if (const char* why = escapeReason(body, &cause)) {
       escaped.push_back(RemovedBody{body.id, body.name, body.xf.p, why, cause});

@@ -97,6 +97,10 @@ struct WorldImpl {
   double* stage(double StepProfile::*field) { return profiling ? &(profile.*field) : nullptr; }
   StepProfile* profiled() { return profiling ? &profile : nullptr; }
   Slots<Body> bodies;
+  /// By body slot: 1 for a living body that is not static (types never change). The per-step
+  /// scans over the slots read this before the Body, so that static bodies (a map's walls) cost
+  /// them a byte each, not a Body's cache lines.
+  std::vector<char> movable;
   Slots<Joint> joints;
   std::vector<JointDef> jointDefs;  // by joint slot: as created (names), for World::jointDef
   std::vector<std::vector<int>> jointsOfBody;  // by body slot

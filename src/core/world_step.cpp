@@ -68,9 +68,9 @@ void WorldImpl::updateBroadPhase() {
     std::vector<std::pair<int, Aabb>>& out = refits[block];
     out.clear();
     for (int i = block * kBodiesPerBlock; i < std::min(slots, (block + 1) * kBodiesPerBlock); ++i) {
+      if (!movable[i]) continue;
       Body& body = bodies.items[i];
-      if (!bodies.alive[i] || body.type == BodyType::Static || !body.awake) continue;
-      if (movedLessThanMargin(body)) continue;
+      if (!body.awake || movedLessThanMargin(body)) continue;
       const size_t before = out.size();
       for (size_t k = 0; k < body.shapes.size(); ++k) {
         const Aabb box = computeAabb(body.shapes[k], body.xf);
@@ -356,7 +356,7 @@ void WorldImpl::correctPositions() {
 
 void WorldImpl::clearForces() {
   for (size_t i = 0; i < bodies.items.size(); ++i) {
-    if (!bodies.alive[i]) continue;
+    if (!movable[i]) continue;  // a static body never gathers a force
     bodies.items[i].force.setZero();
     bodies.items[i].torque = 0.0;
   }
