@@ -38,12 +38,24 @@ if(CATKIN_ENABLE_TESTING)
 
   # Conversions, the ~scene parameter and the markers, without a master.
   catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp
-    test/ros/device_messages_test.cpp test/ros/markers_test.cpp test/ros/sim_world_devices_test.cpp)
+    test/ros/device_messages_test.cpp test/ros/markers_test.cpp test/ros/sim_world_devices_test.cpp
+    test/ros/sim_world_maps_test.cpp)
   target_link_libraries(impulse2d_ros_unit_tests impulse2d_ros GTest::gtest_main)
   target_compile_definitions(impulse2d_ros_unit_tests PRIVATE
     IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
-  # One gtest node, run once against impulse2d_node and once against the nodelet.
+  # A gtest node run twice: by test/ros/NAME.test against impulse2d_node and by
+  # test/ros/NAME_nodelet.test against the nodelet (one pipeline, both ways, as velodyne's).
+  function(impulse2d_add_node_and_nodelet_rostest name)
+    add_rostest_gtest(impulse2d_${name}_tests test/ros/${name}.test ${ARGN}
+      test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
+    target_link_libraries(impulse2d_${name}_tests ${catkin_LIBRARIES} Eigen3::Eigen)
+    add_dependencies(impulse2d_${name}_tests impulse2d_node impulse2d_nodelet
+      ${PROJECT_NAME}_generate_messages_cpp)
+    add_rostest(test/ros/${name}_nodelet.test DEPENDENCIES impulse2d_${name}_tests)
+  endfunction()
+
+  # Services, topics and defaults (world_node.test and world_nodelet.test).
   add_rostest_gtest(impulse2d_world_tests test/ros/world_node.test
     test/ros/world_test_main.cpp
     test/ros/world_test_util.cpp
@@ -61,21 +73,10 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(impulse2d_robot_tests ${catkin_LIBRARIES})
   add_dependencies(impulse2d_robot_tests impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
 
-  # The other devices (omni, ackermann, imu, mounted lasers), as node and as nodelet.
-  add_rostest_gtest(impulse2d_devices_tests test/ros/devices.test test/ros/devices_test.cpp
-    test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
-  target_link_libraries(impulse2d_devices_tests ${catkin_LIBRARIES} Eigen3::Eigen)
-  add_dependencies(impulse2d_devices_tests impulse2d_node impulse2d_nodelet
-    ${PROJECT_NAME}_generate_messages_cpp)
-  add_rostest(test/ros/devices_nodelet.test DEPENDENCIES impulse2d_devices_tests)
-
-  # Occupancy maps: a scene's, ~map, ~map_topic; as node and as nodelet.
-  add_rostest_gtest(impulse2d_maps_tests test/ros/maps.test test/ros/maps_test.cpp
-    test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
-  target_link_libraries(impulse2d_maps_tests ${catkin_LIBRARIES})
-  add_dependencies(impulse2d_maps_tests impulse2d_node impulse2d_nodelet
-    ${PROJECT_NAME}_generate_messages_cpp)
-  add_rostest(test/ros/maps_nodelet.test DEPENDENCIES impulse2d_maps_tests)
+  # The other devices (omni, ackermann, imu, mounted lasers).
+  impulse2d_add_node_and_nodelet_rostest(devices test/ros/devices_test.cpp)
+  # Occupancy maps: a scene's, ~map, ~map_topic.
+  impulse2d_add_node_and_nodelet_rostest(maps test/ros/maps_test.cpp)
 
   roslaunch_add_file_check(launch/world.launch)
   roslaunch_add_file_check(launch/robot_demo.launch rviz:=false)

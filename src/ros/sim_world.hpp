@@ -380,6 +380,7 @@ class SimWorld {
   std::function<std::string(const std::string&, std::string*)> findPackage_;
   std::vector<LoadedMap> maps_;
   std::unique_ptr<LoadedMap> followed_;  ///< followMap's last grid
+  std::vector<BodyId> followedWalls_;    ///< its walls in the world
   uint64_t mapVersion_ = 0;
   std::vector<BodyLoss> losses_;
   uint64_t removedCount_ = 0;

@@ -44,30 +44,32 @@ const LoadedMap* SimWorld::latestMap() const {
 }
 
 void SimWorld::addFollowedWalls() {
+  followedWalls_.clear();
   if (!followed_) return;
   std::string error;
-  if (!impulse2d::addScene(wallsOf(*followed_), *world_, &error)) followed_.reset();
+  if (!impulse2d::addScene(wallsOf(*followed_), *world_, &error, &followedWalls_)) {
+    followed_.reset();
+  }
 }
 
 bool SimWorld::followMap(const std::string& name, OccupancyGrid grid, std::string* error) {
   *error = checkGrid(grid);
   if (!error->empty()) return false;
   auto next = std::make_unique<LoadedMap>(LoadedMap{name, std::move(grid)});
-  const Scene walls = wallsOf(*next);
-  // The last message's walls go first; if the new ones cannot be added, they come back.
-  const auto removeWalls = [&](const Scene& scene) {
-    for (const BodyDef& body : scene.bodies) {
-      const BodyId id = world_->findBody(body.name);
-      if (id.valid()) world_->destroyBody(id);
-    }
-  };
-  if (followed_) removeWalls(wallsOf(*followed_));
-  if (!impulse2d::addScene(walls, *world_, error)) {
+  // The last message's walls go first; if the new ones cannot be added, they come back. They go
+  // by id, not by name: a user's body may have taken the name of a wall deleted since.
+  for (const BodyId wall : followedWalls_) {
+    if (world_->isValid(wall)) world_->destroyBody(wall);
+  }
+  followedWalls_.clear();
+  std::vector<BodyId> added;
+  if (!impulse2d::addScene(wallsOf(*next), *world_, error, &added)) {
     *error = "the map's walls: " + *error;
     addFollowedWalls();
     return false;
   }
   followed_ = std::move(next);
+  followedWalls_ = std::move(added);
   ++mapVersion_;
   ++staticVersion_;
   return true;

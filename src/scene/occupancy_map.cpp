@@ -22,9 +22,14 @@ constexpr int8_t kOccupied = 100, kFree = 0, kUnknown = -1;
 constexpr size_t kMaxMapYamlBytes = 1u << 20;
 
 // Only regular files are read: a FIFO or a device named by a request would block or never end.
-bool isRegularFile(const std::string& path) {
+// Empty when `path` is a regular file, else why it cannot be read as one: "No such file or
+// directory", "a directory", ... (a FIFO or device would block or never end).
+std::string whyNotAFile(const std::string& path) {
   struct stat info {};
-  return stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+  if (stat(path.c_str(), &info) != 0) return std::strerror(errno);
+  if (S_ISDIR(info.st_mode)) return "a directory, not a file";
+  if (!S_ISREG(info.st_mode)) return "not a regular file";
+  return "";
 }
 
 std::string folderOf(const std::string& path) {
@@ -70,7 +75,8 @@ bool loadMapFile(const std::string& yamlPath, OccupancyGrid* out, std::string* e
     return false;
   };
   // Read with a bound first: a map's YAML is a few lines, and the path may name anything.
-  if (!isRegularFile(yamlPath)) return fail("cannot open the map's YAML file (not a file)");
+  const std::string notYaml = whyNotAFile(yamlPath);
+  if (!notYaml.empty()) return fail("cannot open the map's YAML file (" + notYaml + ")");
   std::ifstream file(yamlPath, std::ios::binary);
   if (!file)
     return fail(std::string("cannot open the map's YAML file (") + std::strerror(errno) + ")");
@@ -123,7 +129,8 @@ bool loadMapFile(const std::string& yamlPath, OccupancyGrid* out, std::string* e
   const std::string imagePath =
       !image.empty() && image[0] == '/' ? image : folderOf(yamlPath) + image;
   int width = 0, height = 0, channels = 0;
-  if (!isRegularFile(imagePath)) return fail("image: cannot read " + imagePath + " (not a file)");
+  const std::string notImage = whyNotAFile(imagePath);
+  if (!notImage.empty()) return fail("image: cannot read " + imagePath + " (" + notImage + ")");
   if (stbi_info(imagePath.c_str(), &width, &height, &channels) == 0) {
     return fail("image: cannot read " + imagePath + " (" + stbi_failure_reason() + ")");
   }

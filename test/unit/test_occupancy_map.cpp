@@ -180,14 +180,19 @@ TEST(OccupancyMap, MapServerFilesAndTheirMistakes) {
     EXPECT_EQ(error.find(bad + ": "), 0u) << error;
   }
   EXPECT_FALSE(loadMapFile(folder.path() + "missing.yaml", &grid, &error));
-  EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
+  EXPECT_NE(error.find("cannot open the map's YAML file (No such file or directory)"),
+            std::string::npos)
+      << error;
   // Only regular files: a folder (or a FIFO, a device) would block or never end.
   EXPECT_FALSE(loadMapFile(folder.path(), &grid, &error));
-  EXPECT_NE(error.find("not a file"), std::string::npos) << error;
+  EXPECT_NE(error.find("(a directory, not a file)"), std::string::npos) << error;
+  EXPECT_FALSE(loadMapFile("/dev/null", &grid, &error));
+  EXPECT_NE(error.find("(not a regular file)"), std::string::npos) << error;
   const std::string folderImage =
       folder.write("folder.yaml", "image: /tmp\nresolution: 0.5\norigin: [0, 0, 0]\n");
   EXPECT_FALSE(loadMapFile(folderImage, &grid, &error));
-  EXPECT_NE(error.find("image: cannot read /tmp (not a file)"), std::string::npos) << error;
+  EXPECT_NE(error.find("image: cannot read /tmp (a directory, not a file)"), std::string::npos)
+      << error;
 }
 
 TEST(OccupancyMap, ASceneMapsWallsThatRaysAndBodiesMeetAtTheCells) {
