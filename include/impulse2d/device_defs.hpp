@@ -146,10 +146,17 @@ struct DeviceDef {
   DeviceType type = DeviceType::DiffDrive;
   std::string name;  ///< unique among the world's devices
   std::string body;  ///< the body it is attached to, by name
+  /// Lasers and IMUs: the tf frame of their readings; "": deviceFrameOf() derives it.
+  std::string frame;
   DriveDef drive;
   LaserDef laser;
   BumperDef bumper;
   ImuDef imu;
 };
+
+/// A laser's or IMU's frame: `frame` if given, else "<body>/<name>".
+inline std::string deviceFrameOf(const DeviceDef& def) {
+  return def.frame.empty() ? def.body + "/" + def.name : def.frame;
+}
 
 }  // namespace impulse2d

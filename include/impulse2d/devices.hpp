@@ -52,8 +52,8 @@ class DeviceSet {
  public:
   /// Empty when `defs` can join the devices here: at most kMaxDevices in all; names unique; every
   /// topic used by one device only and not reserved; drives and IMUs only in plane xy; drives one
-  /// per body, and
-  /// with publish_tf each odom frame its own, neither the world frame nor its body's name.
+  /// per body; every frame a device publishes (a drive's odom frame with publish_tf, a laser's
+  /// or IMU's frame) one device's, neither the world frame nor its body's name.
   /// Otherwise one line naming the device and key, e.g.
   ///   "devices[1] 'scan2': topic: 'scan' is already used by the device 'laser'".
   /// Bodies are not looked at: addScene checks them.

@@ -38,6 +38,29 @@ struct ScenePaths {
   std::function<std::string(const std::string& package, std::string* error)> findPackage;
 };
 
+/// Where a model goes and under which names (`models:`, the node's ~spawn_model).
+struct ModelPlacement {
+  std::string name;  ///< unique among the world's models
+  /// "": the name. The model's bodies, joints and devices are named NS/..., its relative topics
+  /// become /NS/..., its frames NS/... (a drive's odom frame, a laser's frame).
+  std::string ns;
+  Vec2 position = Vec2::Zero();  ///< m: the model's frame in the world
+  double angle = 0.0;            ///< rad
+};
+
+/// A model placed in a scene: what the node's ~delete_model and ~move_model act on.
+struct SceneModel {
+  std::string name;
+  std::string ns;
+  std::string file;  ///< as resolved; "" for YAML text
+  /// Its bodies, joints and devices as the world names them (NS/...), in the file's order.
+  std::vector<std::string> bodies, joints, devices;
+  /// Each body's pose in the model's frame, as the file gives it (move_model places the first
+  /// body that is left by it).
+  std::vector<Vec2> localPositions;
+  std::vector<double> localAngles;
+};
+
 struct Scene {
   WorldDef world;
   std::string plane = "xz";  ///< xz: vertical plane (2D y -> 3D z); xy: top-down
@@ -49,6 +72,8 @@ struct Scene {
   std::vector<DeviceDef> devices;
   /// Occupancy maps (`maps:`): their walls are static bodies at the end of `bodies`.
   std::vector<SceneMap> maps;
+  /// Models (`models:`): their bodies, joints and devices are in the lists above, placed.
+  std::vector<SceneModel> models;
 };
 
 /// Parses and validates YAML text against the schema. On failure returns false and sets `error`
@@ -67,6 +92,18 @@ bool loadSceneFile(const std::string& path, const ScenePaths& paths, Scene* out,
 /// (colon-separated, as a sourced workspace sets it) where E/PACKAGE/package.xml exists, or
 /// whose own package.xml names PACKAGE, that folder; else "" with `error` set.
 std::string findPackageOnPath(const std::string& package, std::string* error);
+
+/// Reads a model: YAML with a scene's `bodies`, `joints` and `devices` (no `world`, `maps` or
+/// `models`), every body named; joints and devices name the model's own bodies.
+bool parseModel(const std::string& yamlText, Scene* out, std::string* error);
+/// Reads a model file.
+bool loadModelFile(const std::string& path, Scene* out, std::string* error);
+/// Appends `model` to `scene` as `where` places it: names prefixed, poses, velocities, joint
+/// anchors and axes carried by the model's pose, relative topics and frames put in its
+/// namespace; recorded in scene->models. Refused, with `scene` unchanged, when the model's name
+/// is taken by a model of the scene, or a body, joint or device name by the scene's.
+bool placeModel(const Scene& model, const ModelPlacement& where, Scene* scene, std::string* error,
+                const std::string& file = "");
 
 /// Adds every body and joint of `scene` to `world`, or nothing: names must not clash with bodies
 /// or joints already in the world, and joints and devices may name bodies of the scene or of the

@@ -39,7 +39,7 @@ std::string DeviceSet::check(const std::vector<DeviceDef>& defs, const DeviceCon
     return "devices: the world would hold more than " + std::to_string(kMaxDevices) + " devices";
   }
   // Each name taken so far, with who took it: one of the set's devices or of the new ones.
-  std::map<std::string, std::string> names, topics, odomFrames, drivenBodies;
+  std::map<std::string, std::string> names, topics, frames, drivenBodies;
   for (const std::string& topic : world.reservedTopics) topics[topic] = "the node itself";
   auto claim = [](std::map<std::string, std::string>& taken, const std::string& key,
                   const std::string& holder) -> std::string {
@@ -56,6 +56,15 @@ std::string DeviceSet::check(const std::vector<DeviceDef>& defs, const DeviceCon
         return std::string(key) + ": '" + topic + "' is already used by " + clash;
       }
     }
+    if (def.type == DeviceType::Laser || def.type == DeviceType::Imu) {
+      // Its frame hangs below its body in tf: one parent per frame.
+      const std::string frame = deviceFrameOf(def);
+      if (frame == world.worldFrame || frame == def.body) {
+        return "frame: must differ from the world frame and from its body's frame";
+      }
+      clash = claim(frames, frame, holder);
+      if (!clash.empty()) return "frame: '" + frame + "' is already published by " + clash;
+    }
     if (!isDrive(def.type)) return "";
     clash = claim(drivenBodies, def.body, holder);
     if (!clash.empty()) return "body: '" + def.body + "' is already driven by " + clash;
@@ -64,7 +73,7 @@ std::string DeviceSet::check(const std::vector<DeviceDef>& defs, const DeviceCon
     if (frame == world.worldFrame)
       return "odom_frame: must differ from the world frame '" + frame + "'";
     if (frame == def.body) return "odom_frame: must differ from the body's own frame";
-    clash = claim(odomFrames, frame, holder);
+    clash = claim(frames, frame, holder);
     if (!clash.empty()) return "odom_frame: '" + frame + "' is already published by " + clash;
     return "";
   };

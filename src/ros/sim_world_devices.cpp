@@ -111,7 +111,7 @@ void SimWorld::collectDeviceReadings(bool bodiesRemoved) {
     if (device.laser) {
       ScanReading scan;
       scan.device = device.def.name;
-      scan.frame = device.def.body + "/" + device.def.name;
+      scan.frame = deviceFrameOf(device.def);
       scan.def = device.def.laser;
       scan.beams = device.laser->beamCount();
       scan.stampNs = simTimeNs_;
@@ -121,7 +121,7 @@ void SimWorld::collectDeviceReadings(bool bodiesRemoved) {
     } else if (device.imu) {
       ImuReading reading;
       reading.device = device.def.name;
-      reading.frame = device.def.body + "/" + device.def.name;
+      reading.frame = deviceFrameOf(device.def);
       reading.def = device.def.imu;
       reading.stampNs = simTimeNs_;
       reading.orientation = device.imuReading.orientation;
@@ -179,7 +179,7 @@ std::vector<FixedFrame> SimWorld::fixedFrames() const {
   for (const Device& device : devices_->devices()) {
     if (!(device.laser || device.imu) || !world_->isValid(device.body)) continue;
     FixedFrame frame;
-    frame.name = device.def.body + "/" + device.def.name;
+    frame.name = deviceFrameOf(device.def);
     frame.parent = device.def.body;
     frame.owner = device.def.body;
     frame.laser = true;

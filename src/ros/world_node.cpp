@@ -120,7 +120,12 @@ void WorldNode::readParams() {
     ROS_WARN("[%s] ~publish_rate must be > 0; using 30", name_.c_str());
     publishRate_ = 30.0;
   }
-  pnh_.param("publish_clock", publishClock_, false);
+  // Unset, it follows /use_sim_time: a user who sets that for the navigation stack wants the
+  // simulator to be the clock (as stage_ros and flatland are).
+  if (!pnh_.getParam("publish_clock", publishClock_)) {
+    publishClock_ = false;
+    ros::param::get("/use_sim_time", publishClock_);
+  }
   pnh_.param("paused", paused_, false);
   int threads = 0;
   if (pnh_.getParam("threads", threads)) {

@@ -8,11 +8,6 @@
 #include "yaml_document.hpp"
 #include "yaml_fields.hpp"
 
-#include <cerrno>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <map>
 
 namespace impulse2d {
@@ -89,12 +84,41 @@ void parseMaps(const Fields& top, const ScenePaths& paths, Scene* scene) {
   }
 }
 
+// `models:`: each model file's bodies, joints and devices, placed and named in its namespace.
+void parseModels(const Fields& top, const ScenePaths& paths, Scene* scene) {
+  if (!top.has("models")) return;
+  const YAML::Node& list = top.node("models");
+  if (!list.IsNull() && !list.IsSequence()) throw SceneError("models", "must be a list");
+  size_t i = 0;
+  for (const YAML::Node& node : list) {
+    const std::string context = entryContext("models", i, node);
+    try {
+      const Fields f(node, "a model entry", {"name", "file", "namespace", "position", "angle"});
+      ModelPlacement where;
+      where.name = f.name("name");
+      where.ns = f.string("namespace", "");
+      where.position = f.vec2("position", where.position);
+      where.angle = f.number("angle", where.angle);
+      if (!f.has("file")) throw SceneError("file", "must be given: a model's YAML file");
+      const std::string file = resolveFile(f.string("file", ""), paths);
+      Scene model;
+      std::string why;
+      if (!loadModelFile(file, &model, &why)) throw SceneError("file", why);
+      if (!placeModel(model, where, scene, &why, file)) throw SceneError("", why);
+    } catch (const SceneError& e) {
+      throw SceneError("", context + ": " + e.what());
+    }
+    ++i;
+  }
+}
+
 Scene parseDocument(const YAML::Node& doc, const ScenePaths& paths) {
   if (doc.IsNull()) {
-    throw SceneError("", "the scene is empty (expected world, bodies, joints, devices, maps)");
+    throw SceneError("",
+                     "the scene is empty (expected world, bodies, joints, devices, maps, models)");
   }
-  const Fields top(doc, "a scene (keys world, bodies, joints, devices, maps)",
-                   {"world", "bodies", "joints", "devices", "maps"});
+  const Fields top(doc, "a scene (keys world, bodies, joints, devices, maps, models)",
+                   {"world", "bodies", "joints", "devices", "maps", "models"});
   Scene scene;
   if (top.has("world")) {
     try {
@@ -107,7 +131,18 @@ Scene parseDocument(const YAML::Node& doc, const ScenePaths& paths) {
   parseList(top, "joints", parseJoint, &scene.joints);
   parseList(top, "devices", parseDevice, &scene.devices);
   parseMaps(top, paths, &scene);
+  parseModels(top, paths, &scene);
   return scene;
+}
+
+Scene parseModelDocument(const YAML::Node& doc) {
+  if (doc.IsNull()) throw SceneError("", "the model is empty (expected bodies, joints, devices)");
+  const Fields top(doc, "a model", {"bodies", "joints", "devices"});
+  Scene model;
+  parseList(top, "bodies", parseBody, &model.bodies);
+  parseList(top, "joints", parseJoint, &model.joints);
+  parseList(top, "devices", parseDevice, &model.devices);
+  return model;
 }
 
 bool fail(std::string* error, const std::string& message) {
@@ -121,6 +156,32 @@ bool fail(std::string* error, const std::string& message) {
   return false;
 }
 
+// Parses one YAML document with `parse`, turning every exception into one line.
+template <typename Parse>
+bool parseText(const std::string& yamlText, const char* what, Parse parse, Scene* out,
+               std::string* error) {
+  // yaml-cpp's node tree costs tens of times the text: refuse before parsing.
+  if (yamlText.size() > kMaxSceneBytes) {
+    return fail(error, "the " + std::string(what) + " is " + std::to_string(yamlText.size()) +
+                           " bytes; at most " + std::to_string(kMaxSceneBytes) + " are accepted");
+  }
+  try {
+    Scene scene = parse(loadSingleDocument(yamlText));
+    if (out != nullptr) *out = std::move(scene);
+    return true;
+  } catch (const YAML::ParserException& e) {
+    if (e.mark.is_null()) return fail(error, "YAML syntax error: " + e.msg);
+    return fail(error, "YAML syntax error at line " + std::to_string(e.mark.line + 1) +
+                           ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
+  } catch (const SceneError& e) {
+    return fail(error, e.what());
+  } catch (const std::exception& e) {
+    return fail(error, "cannot read the " + std::string(what) + ": " + e.what());
+  } catch (...) {
+    return fail(error, "cannot read the " + std::string(what));
+  }
+}
+
 }  // namespace
 }  // namespace scene_detail
 
@@ -130,74 +191,31 @@ bool parseScene(const std::string& yamlText, Scene* out, std::string* error) {
 
 bool parseScene(const std::string& yamlText, const ScenePaths& paths, Scene* out,
                 std::string* error) {
-  using scene_detail::fail;
-  // yaml-cpp's node tree costs tens of times the text: refuse before parsing.
-  if (yamlText.size() > kMaxSceneBytes) {
-    return fail(error, "the scene is " + std::to_string(yamlText.size()) + " bytes; at most " +
-                           std::to_string(kMaxSceneBytes) + " are accepted");
-  }
-  try {
-    Scene scene = scene_detail::parseDocument(scene_detail::loadSingleDocument(yamlText), paths);
-    if (out != nullptr) *out = std::move(scene);
-    return true;
-  } catch (const YAML::ParserException& e) {
-    if (e.mark.is_null()) return fail(error, "YAML syntax error: " + e.msg);
-    return fail(error, "YAML syntax error at line " + std::to_string(e.mark.line + 1) +
-                           ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
-  } catch (const scene_detail::SceneError& e) {
-    return fail(error, e.what());
-  } catch (const std::exception& e) {
-    return fail(error, std::string("cannot read the scene: ") + e.what());
-  } catch (...) {
-    return fail(error, "cannot read the scene");
-  }
+  return scene_detail::parseText(
+      yamlText, "scene",
+      [&](const YAML::Node& doc) { return scene_detail::parseDocument(doc, paths); }, out, error);
+}
+
+bool parseModel(const std::string& yamlText, Scene* out, std::string* error) {
+  return scene_detail::parseText(yamlText, "model", scene_detail::parseModelDocument, out, error);
+}
+
+bool loadModelFile(const std::string& path, Scene* out, std::string* error) {
+  std::string text, why;
+  if (!scene_detail::readSceneText(path, &text, error)) return false;
+  if (!parseModel(text, out, &why)) return scene_detail::fail(error, path + ": " + why);
+  return true;
 }
 
 bool loadSceneFile(const std::string& path, Scene* out, std::string* error) {
   return loadSceneFile(path, ScenePaths(), out, error);
 }
 
-std::string findPackageOnPath(const std::string& package, std::string* error) {
-  const char* list = std::getenv("ROS_PACKAGE_PATH");
-  std::string entries = list == nullptr ? "" : list;
-  size_t start = 0;
-  while (start <= entries.size()) {
-    size_t end = entries.find(':', start);
-    if (end == std::string::npos) end = entries.size();
-    std::string entry = entries.substr(start, end - start);
-    while (entry.size() > 1 && entry.back() == '/') entry.pop_back();
-    start = end + 1;
-    if (entry.empty()) continue;
-    const std::string inside = entry + "/" + package;
-    if (std::ifstream(inside + "/package.xml").good()) return inside;
-    // The entry may be the package's own folder, whatever its name: its package.xml says.
-    std::ifstream own(entry + "/package.xml");
-    const std::string xml((std::istreambuf_iterator<char>(own)), std::istreambuf_iterator<char>());
-    if (xml.find("<name>" + package + "</name>") != std::string::npos) return entry;
-  }
-  if (error != nullptr) {
-    *error = "no package named '" + package + "' on ROS_PACKAGE_PATH (" +
-             (list == nullptr ? "not set: source a workspace's devel/setup.bash" : entries) + ")";
-  }
-  return "";
-}
-
 bool loadSceneFile(const std::string& path, const ScenePaths& base, Scene* out,
                    std::string* error) {
   using scene_detail::fail;
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return fail(error, path + ": cannot open (" + std::strerror(errno) + ")");
   std::string text;
-  char chunk[1 << 16];
-  while (file.read(chunk, sizeof chunk) || file.gcount() > 0) {
-    text.append(chunk, static_cast<size_t>(file.gcount()));
-    // A file larger than this is surely not a scene (or is /dev/zero): reading stops there.
-    if (text.size() > kMaxSceneBytes) {
-      return fail(error, path + ": larger than " + std::to_string(kMaxSceneBytes >> 20) +
-                             " MiB, too large for a scene");
-    }
-  }
-  if (file.bad()) return fail(error, path + ": cannot read (" + std::strerror(errno) + ")");
+  if (!scene_detail::readSceneText(path, &text, error)) return false;
   ScenePaths paths = base;
   paths.folder.clear();
   const size_t slash = path.find_last_of('/');

@@ -45,11 +45,12 @@ const TypeKeys kTypeKeys[] = {
       "pose_variance", "twist_variance", "wheelbase", "max_steering_angle", "steering_rate"}},
     {DeviceType::Laser,
      {"offset", "topic", "range_min", "range_max", "angle_min", "angle_max", "angle_increment",
-      "update_rate", "noise_stddev", "seed", "flip"}},
+      "update_rate", "noise_stddev", "seed", "flip", "frame"}},
     {DeviceType::Bumper, {"topic"}},
     {DeviceType::Imu,
-     {"offset", "topic", "update_rate", "seed", "orientation_noise", "angular_velocity_noise",
-      "linear_acceleration_noise", "angular_velocity_bias", "linear_acceleration_bias"}},
+     {"offset", "topic", "frame", "update_rate", "seed", "orientation_noise",
+      "angular_velocity_noise", "linear_acceleration_noise", "angular_velocity_bias",
+      "linear_acceleration_bias"}},
 };
 
 // A key of some device type other than `type` (and not also one of its own).
@@ -252,6 +253,7 @@ DeviceDef parseDevice(const YAML::Node& node) {
                  {"type",
                   "name",
                   "body",
+                  "frame",
                   "cmd_vel_topic",
                   "odom_topic",
                   "ground_truth_topic",
@@ -289,6 +291,7 @@ DeviceDef parseDevice(const YAML::Node& node) {
   def.type = type;
   def.name = f.name("name");
   def.body = f.name("body");
+  if (f.has("frame")) def.frame = f.name("frame");
   switch (type) {
     case DeviceType::DiffDrive:
     case DeviceType::Omni:

@@ -16,6 +16,11 @@ BodyDef parseBody(const YAML::Node& node);
 SceneJoint parseJoint(const YAML::Node& node);
 /// One entry of `devices:`; its body is resolved by name only when the scene is added.
 DeviceDef parseDevice(const YAML::Node& node);
+/// A file name of a scene: absolute, relative to paths.folder, or package://PACKAGE/PATH;
+/// throws SceneError("file", ...) when it cannot be resolved.
+std::string resolveFile(const std::string& name, const ScenePaths& paths);
+/// Reads a scene's or a model's text, at most kMaxSceneBytes; false with "PATH: why" otherwise.
+bool readSceneText(const std::string& path, std::string* text, std::string* error);
 /// One entry of `maps:`: reads its files and appends its walls to `walls`.
 SceneMap parseMap(const YAML::Node& node, const ScenePaths& paths, std::vector<BodyDef>* walls);
 

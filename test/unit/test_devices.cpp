@@ -85,7 +85,21 @@ TEST(DeviceSet, RefusesClashesNamingTheDeviceAndKey) {
   sameOdomFrame.drive.odomTopic = "odom2";
   DeviceDef worldOdomFrame = sameOdomFrame;
   worldOdomFrame.drive.odomFrame = "world";
+  // Every published frame has one publisher: lasers' and IMUs' frames, and odom frames.
+  DeviceDef sameLaserFrame = device(DeviceType::Laser, "laser2", "other");
+  sameLaserFrame.laser.topic = "scan2";
+  sameLaserFrame.frame = "robot/laser";
+  DeviceDef laserFrameIsOdom = sameLaserFrame;
+  laserFrameIsOdom.frame = "odom";
+  DeviceDef laserFrameIsBody = sameLaserFrame;
+  laserFrameIsBody.frame = "other";
   const Case cases[] = {
+      {sameLaserFrame,
+       "devices[0] 'laser2': frame: 'robot/laser' is already published by the device 'laser'"},
+      {laserFrameIsOdom,
+       "devices[0] 'laser2': frame: 'odom' is already published by the device 'drive'"},
+      {laserFrameIsBody,
+       "devices[0] 'laser2': frame: must differ from the world frame and from its body's frame"},
       {device(DeviceType::Bumper, "laser", "other"),
        "devices[0] 'laser': name: already used by the device 'laser'"},
       {sameTopic,

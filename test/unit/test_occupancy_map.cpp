@@ -7,39 +7,13 @@
 #include <impulse2d/occupancy_map.hpp>
 #include <impulse2d/scene.hpp>
 
-#include <unistd.h>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
+#include "temp_folder.hpp"
+
 #include <random>
 #include <string>
 
 namespace impulse2d {
 namespace {
-
-// A folder of its own under the test's temporary folder, removed at the end.
-class TempFolder {
- public:
-  TempFolder() {
-    std::string pattern = testing::TempDir() + "impulse2d_map_XXXXXX";
-    path_ = mkdtemp(pattern.data()) ? pattern + "/" : "";
-  }
-  ~TempFolder() {
-    for (const std::string& f : files_) std::remove(f.c_str());
-    rmdir(path_.c_str());
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string file = path_ + name;
-    std::ofstream(file, std::ios::binary) << text;
-    files_.push_back(file);
-    return file;
-  }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-  std::vector<std::string> files_;
-};
 
 // A binary PGM (P5) of `rows`, top row first, '#' black (occupied), '.' white (free), '?' grey.
 std::string pgm(const std::vector<std::string>& rows) {
