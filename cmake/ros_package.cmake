@@ -14,6 +14,8 @@ add_service_files(DIRECTORY srv FILES
 add_service_files(DIRECTORY srv FILES GetBodyProperties.srv)
 # ~ray_cast, ~query_point
 add_service_files(DIRECTORY srv FILES QueryPoint.srv RayCast.srv)
+# ~spawn_model, ~delete_model, ~move_model
+add_service_files(DIRECTORY srv FILES DeleteModel.srv MoveModel.srv SpawnModel.srv)
 generate_messages(DEPENDENCIES geometry_msgs std_msgs)
 
 catkin_package(

@@ -15,6 +15,7 @@ add_library(impulse2d_ros STATIC
   src/ros/sim_world.cpp
   src/ros/sim_world_devices.cpp
   src/ros/sim_world_maps.cpp
+  src/ros/sim_world_models.cpp
   src/ros/sim_world_queries.cpp
   src/ros/world_devices.cpp
   src/ros/world_maps.cpp
@@ -39,7 +40,7 @@ if(CATKIN_ENABLE_TESTING)
   # Conversions, the ~scene parameter and the markers, without a master.
   catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp
     test/ros/device_messages_test.cpp test/ros/markers_test.cpp test/ros/sim_world_devices_test.cpp
-    test/ros/sim_world_maps_test.cpp)
+    test/ros/sim_world_maps_test.cpp test/ros/sim_world_models_test.cpp)
   target_link_libraries(impulse2d_ros_unit_tests impulse2d_ros GTest::gtest_main)
   target_compile_definitions(impulse2d_ros_unit_tests PRIVATE
     IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -77,6 +78,8 @@ if(CATKIN_ENABLE_TESTING)
   impulse2d_add_node_and_nodelet_rostest(devices test/ros/devices_test.cpp)
   # Occupancy maps: a scene's, ~map, ~map_topic.
   impulse2d_add_node_and_nodelet_rostest(maps test/ros/maps_test.cpp)
+  # Models in namespaces: a scene's, ~spawn_model, ~move_model, ~delete_model; /clock.
+  impulse2d_add_node_and_nodelet_rostest(models test/ros/models_test.cpp)
 
   roslaunch_add_file_check(launch/world.launch)
   roslaunch_add_file_check(launch/robot_demo.launch rviz:=false)

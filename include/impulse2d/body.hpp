@@ -21,8 +21,8 @@ struct alignas(64) Body {
 
   std::vector<Shape> shapes;  ///< in the body frame (offsets already applied)
   std::vector<int> proxies;   ///< broad-phase proxy of each shape
-  double maxExtent = 0.0;  ///< m, farthest shape point from the centre of mass
-  double minExtent = 0.0;  ///< m, the thinnest shape's inner radius: moving less cannot skip it
+  double maxExtent = 0.0;     ///< m, farthest shape point from the centre of mass
+  double minExtent = 0.0;     ///< m, the thinnest shape's inner radius: moving less cannot skip it
 
   BodyId id;
   std::string name;
@@ -43,7 +43,7 @@ struct alignas(64) Body {
   /// Where the body was when the fat boxes of all its shapes were last placed: while it has
   /// moved less than their margin since, no shape can have left its box.
   Transform proxyXf;
-  bool lost = false;       ///< reported lost for good (World::takeLostBodies), not back since
+  bool lost = false;  ///< reported lost for good (World::takeLostBodies), not back since
 
   /// Velocity of a world point attached to the body.
   Vec2 velocityAt(const Vec2& worldPoint) const {

@@ -77,6 +77,9 @@ class Drive {
   /// (the caller reports them).
   void command(double vx, double vy, double w, double now);
   void command(double v, double w, double now) { command(v, 0.0, w, now); }
+  /// The wheels stop at once and the last command is forgotten, as when the robot is picked up
+  /// and set down elsewhere (a model moved): it stays still until the next command.
+  void halt();
   /// Whether the last command (if any) is older than cmd_timeout at `now`.
   bool timedOut(double now) const;
 

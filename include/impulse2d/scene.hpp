@@ -4,6 +4,7 @@
 
 #include <impulse2d/defs.hpp>
 #include <impulse2d/device_defs.hpp>
+#include <impulse2d/model.hpp>
 #include <impulse2d/occupancy_map.hpp>
 #include <impulse2d/world.hpp>
 
@@ -38,29 +39,6 @@ struct ScenePaths {
   std::function<std::string(const std::string& package, std::string* error)> findPackage;
 };
 
-/// Where a model goes and under which names (`models:`, the node's ~spawn_model).
-struct ModelPlacement {
-  std::string name;  ///< unique among the world's models
-  /// "": the name. The model's bodies, joints and devices are named NS/..., its relative topics
-  /// become /NS/..., its frames NS/... (a drive's odom frame, a laser's frame).
-  std::string ns;
-  Vec2 position = Vec2::Zero();  ///< m: the model's frame in the world
-  double angle = 0.0;            ///< rad
-};
-
-/// A model placed in a scene: what the node's ~delete_model and ~move_model act on.
-struct SceneModel {
-  std::string name;
-  std::string ns;
-  std::string file;  ///< as resolved; "" for YAML text
-  /// Its bodies, joints and devices as the world names them (NS/...), in the file's order.
-  std::vector<std::string> bodies, joints, devices;
-  /// Each body's pose in the model's frame, as the file gives it (move_model places the first
-  /// body that is left by it).
-  std::vector<Vec2> localPositions;
-  std::vector<double> localAngles;
-};
-
 struct Scene {
   WorldDef world;
   std::string plane = "xz";  ///< xz: vertical plane (2D y -> 3D z); xy: top-down
@@ -88,6 +66,9 @@ bool loadSceneFile(const std::string& path, Scene* out, std::string* error);
 /// The same, with `findPackage` for package:// names (paths.folder is the file's own).
 bool loadSceneFile(const std::string& path, const ScenePaths& paths, Scene* out,
                    std::string* error);
+/// A file name as scenes give them: absolute, relative to paths.folder, or
+/// package://PACKAGE/PATH; "" with `error` set when it cannot be resolved.
+std::string resolveSceneFile(const std::string& name, const ScenePaths& paths, std::string* error);
 /// A package finder without ROS (impulse2d_sim): for the first entry E of $ROS_PACKAGE_PATH
 /// (colon-separated, as a sourced workspace sets it) where E/PACKAGE/package.xml exists, or
 /// whose own package.xml names PACKAGE, that folder; else "" with `error` set.

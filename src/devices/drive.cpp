@@ -78,6 +78,14 @@ void Drive::command(double vx, double vy, double w, double now) {
   hasCommand_ = true;
 }
 
+void Drive::halt() {
+  commandVx_ = commandVy_ = commandW_ = 0.0;
+  hasCommand_ = false;
+  startSpeed_ = startSideSpeed_ = startTurnRate_ = 0.0;
+  speed_ = sideSpeed_ = turnRate_ = 0.0;
+  steering_ = 0.0;
+}
+
 bool Drive::timedOut(double now) const {
   return hasCommand_ && def_.cmdTimeout > 0.0 && now - commandTime_ > def_.cmdTimeout;
 }

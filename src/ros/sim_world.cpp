@@ -14,8 +14,6 @@ namespace impulse2d {
 namespace bridge {
 namespace {
 
-std::string quoted(const std::string& name) { return "'" + name + "'"; }
-
 void outline(const Shape& shape, ShapeOutline* out) {
   out->circle = shape.type == ShapeType::Circle;
   if (out->circle) {
@@ -101,6 +99,7 @@ void SimWorld::restoreStart() {
   imuReadings_.clear();
   bumperChanges_.clear();
   maps_.clear();
+  models_.clear();
   ++mapVersion_;
   ++staticVersion_;
   if (!startYaml_.empty()) {
@@ -115,6 +114,7 @@ void SimWorld::restoreStart() {
       scene.devices.clear();
       if (impulse2d::addScene(scene, *world_, &error)) {
         for (SceneMap& map : scene.maps) maps_.push_back({map.name, std::move(map.grid)});
+        recordModels(scene.models);
       }
     }
   }
@@ -140,10 +140,13 @@ bool SimWorld::addScene(const std::string& yamlText, std::string* error) {
   Scene scene;
   if (!parse(yamlText, &scene, error)) return false;
   // Checked against the devices here before anything is added; addScene checks their bodies.
+  *error = checkModelNames(scene.models);
+  if (!error->empty()) return false;
   *error = devices_->check(scene.devices, deviceContext());
   if (!error->empty()) return false;
   if (!impulse2d::addScene(scene, *world_, error)) return false;
   addDevices(scene.devices, error);  // checked above: cannot fail
+  recordModels(scene.models);
   for (SceneMap& map : scene.maps) maps_.push_back({map.name, std::move(map.grid)});
   if (!scene.maps.empty()) ++mapVersion_;
   ++staticVersion_;

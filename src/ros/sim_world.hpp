@@ -9,6 +9,7 @@
 
 #include <impulse2d/defs.hpp>
 #include <impulse2d/device_defs.hpp>
+#include <impulse2d/model.hpp>
 #include <impulse2d/occupancy_map.hpp>
 #include <impulse2d/profile.hpp>
 
@@ -30,6 +31,9 @@ struct DeviceContext;
 struct ContactInfo;
 
 namespace bridge {
+
+/// A name in single quotes, for one-line errors.
+inline std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
 /// A shape's outline in its body's frame: a circle, or a convex polygon counter-clockwise.
 struct ShapeOutline {
@@ -191,6 +195,17 @@ struct UrdfSpawned {
   std::vector<std::string> bodies, joints, warnings;
 };
 
+/// What ~spawn_model asks for and answers (sim_world_models.cpp): a model file (absolute or
+/// package://) or its YAML text, and where it goes.
+struct ModelRequest {
+  ModelPlacement where;
+  std::string file;  ///< one of file and yaml
+  std::string yaml;
+};
+struct ModelSpawned {
+  std::vector<std::string> bodies, joints, devices;
+};
+
 /// An occupancy map the world's walls came from (a scene's `maps:`), for ~map.
 struct LoadedMap {
   std::string name;
@@ -252,6 +267,17 @@ class SimWorld {
   bool setJointMotor(const std::string& name, double speed, double maxEffort, bool release,
                      std::string* error);
   std::vector<JointReading> urdfJointStates() const;
+
+  // Models (sim_world_models.cpp): a scene's `models:` and those spawned since. A model spawned
+  // here is gone after reset(), as a spawned body is; the start scene's come back.
+  bool spawnModel(const ModelRequest& request, ModelSpawned* out, std::string* error);
+  /// Removes the model's bodies (the joints and devices on them go along).
+  bool deleteModel(const std::string& name, std::string* error);
+  /// Moves the model rigidly so that it stands at `position`, `angle` as if spawned there (its
+  /// first body still in the world is placed as the file places it, the others keep their pose
+  /// relative to it), and stops it: velocities zero, drives halted.
+  bool moveModel(const std::string& name, const Vec2& position, double angle, std::string* error);
+  std::vector<std::string> modelNames() const;
 
   // Queries (sim_world_queries.cpp): points within 1e7 m of the origin, named bodies to skip.
   bool rayCast(const Vec2& start, const Vec2& end, const std::vector<std::string>& ignore,
@@ -348,6 +374,16 @@ class SimWorld {
     double maxVelocity = 0.0;
   };
   void respawnStartUrdfs();
+  /// A model in the world: its bodies by id, so that a user's body that took the name of one
+  /// removed since is never taken for it.
+  struct PlacedModel {
+    SceneModel def;
+    std::vector<BodyId> bodies;  ///< def.bodies' ids when placed
+  };
+  /// Records the models just added with their bodies (names are unique then).
+  void recordModels(const std::vector<SceneModel>& models);
+  /// Empty when none of `models` takes the name of a model here, else the error.
+  std::string checkModelNames(const std::vector<SceneModel>& models) const;
   DeviceContext deviceContext() const;
   /// Adds `devices` (checked against the world and the devices here) or nothing.
   bool addDevices(const std::vector<DeviceDef>& devices, std::string* error);
@@ -382,6 +418,7 @@ class SimWorld {
   std::unique_ptr<LoadedMap> followed_;  ///< followMap's last grid
   std::vector<BodyId> followedWalls_;    ///< its walls in the world
   uint64_t mapVersion_ = 0;
+  std::vector<PlacedModel> models_;
   std::vector<BodyLoss> losses_;
   uint64_t removedCount_ = 0;
   uint64_t lostCount_ = 0;

@@ -12,16 +12,19 @@
 #include <impulse2d/CreateJoint.h>
 #include <impulse2d/DeleteBody.h>
 #include <impulse2d/DeleteJoint.h>
+#include <impulse2d/DeleteModel.h>
 #include <impulse2d/GetBodyProperties.h>
 #include <impulse2d/GetBodyState.h>
 #include <impulse2d/JointCommand.h>
 #include <impulse2d/LoadScene.h>
+#include <impulse2d/MoveModel.h>
 #include <impulse2d/QueryPoint.h>
 #include <impulse2d/RayCast.h>
 #include <impulse2d/RemovedBodies.h>
 #include <impulse2d/SetBodyState.h>
 #include <impulse2d/SetJointMotor.h>
 #include <impulse2d/SpawnBody.h>
+#include <impulse2d/SpawnModel.h>
 #include <impulse2d/SpawnUrdf.h>
 #include <impulse2d/Step.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -123,6 +126,12 @@ class WorldNode {
   void publishMap();
 
   // URDF models, joint_states and joint motors (urdf_services.cpp).
+  // Models (model_services.cpp).
+  void advertiseModels();
+  bool spawnModel(SpawnModel::Request& req, SpawnModel::Response& res);
+  bool deleteModel(DeleteModel::Request& req, DeleteModel::Response& res);
+  bool moveModel(MoveModel::Request& req, MoveModel::Response& res);
+
   void loadStartUrdf();
   void advertiseUrdf();
   bool spawnUrdf(SpawnUrdf::Request& req, SpawnUrdf::Response& res);

@@ -51,6 +51,7 @@ void WorldNode::advertiseServices() {
   services_.push_back(pnh_.advertiseService("ray_cast", &WorldNode::rayCast, this));
   services_.push_back(pnh_.advertiseService("query_point", &WorldNode::queryPoint, this));
   advertiseUrdf();
+  advertiseModels();
 }
 
 bool WorldNode::spawnBody(SpawnBody::Request& req, SpawnBody::Response& res) {
@@ -210,6 +211,56 @@ bool WorldNode::reset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   }
   syncDevices();
   return true;
+}
+
+// Models: a model file spawned once per robot in its namespace, deleted and moved whole.
+void WorldNode::advertiseModels() {
+  services_.push_back(pnh_.advertiseService("spawn_model", &WorldNode::spawnModel, this));
+  services_.push_back(pnh_.advertiseService("delete_model", &WorldNode::deleteModel, this));
+  services_.push_back(pnh_.advertiseService("move_model", &WorldNode::moveModel, this));
+}
+
+bool WorldNode::spawnModel(SpawnModel::Request& req, SpawnModel::Response& res) {
+  ModelRequest request;
+  request.where.name = req.model_name;
+  request.where.ns = req.robot_namespace;
+  request.where.position = Vec2(req.pose.x, req.pose.y);
+  request.where.angle = req.pose.theta;
+  request.file = req.file;
+  request.yaml = req.model_yaml;
+  std::string error = firstOf({finite("pose.x", req.pose.x), finite("pose.y", req.pose.y),
+                               finite("pose.theta", req.pose.theta)});
+  if (error.empty() && req.model_name.empty()) error = "model_name: must not be empty";
+  ModelSpawned spawned;
+  if (error.empty()) {
+    Lock lock(*this);
+    sim_.spawnModel(request, &spawned, &error);
+  }
+  syncDevices();  // its devices get their topics before the answer
+  res.bodies = spawned.bodies;
+  res.joints = spawned.joints;
+  res.devices = spawned.devices;
+  return answer(res, error);
+}
+
+bool WorldNode::deleteModel(DeleteModel::Request& req, DeleteModel::Response& res) {
+  std::string error;
+  {
+    Lock lock(*this);
+    sim_.deleteModel(req.model_name, &error);
+  }
+  syncDevices();  // its devices went with it
+  return answer(res, error);
+}
+
+bool WorldNode::moveModel(MoveModel::Request& req, MoveModel::Response& res) {
+  std::string error = firstOf({finite("pose.x", req.pose.x), finite("pose.y", req.pose.y),
+                               finite("pose.theta", req.pose.theta)});
+  if (error.empty()) {
+    Lock lock(*this);
+    sim_.moveModel(req.model_name, Vec2(req.pose.x, req.pose.y), req.pose.theta, &error);
+  }
+  return answer(res, error);
 }
 
 }  // namespace bridge

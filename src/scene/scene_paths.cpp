@@ -69,6 +69,16 @@ bool readSceneText(const std::string& path, std::string* text, std::string* erro
 
 }  // namespace scene_detail
 
+std::string resolveSceneFile(const std::string& name, const ScenePaths& paths,
+                             std::string* error) {
+  try {
+    return scene_detail::resolveFile(name, paths);
+  } catch (const scene_detail::SceneError& e) {
+    if (error != nullptr) *error = e.what();
+    return "";
+  }
+}
+
 std::string findPackageOnPath(const std::string& package, std::string* error) {
   const char* list = std::getenv("ROS_PACKAGE_PATH");
   std::string entries = list == nullptr ? "" : list;

@@ -31,8 +31,10 @@ inline void stepWorld(uint32_t steps) {
 /// A cmd_vel publisher, connected to the node before it is used.
 class CmdVel {
  public:
+  /// `topic` relative to the world's namespace, or absolute ("/r1/cmd_vel").
   explicit CmdVel(const std::string& topic)
-      : pub_(ros::NodeHandle().advertise<geometry_msgs::Twist>(worldNs() + "/" + topic, 10)) {
+      : pub_(ros::NodeHandle().advertise<geometry_msgs::Twist>(
+            topic[0] == '/' ? topic : worldNs() + "/" + topic, 10)) {
     EXPECT_TRUE(waitFor([&] { return pub_.getNumSubscribers() > 0; }, kWait)) << topic;
   }
   /// linear.x = v, angular.z = w, linear.y = sideways (omni drives).
