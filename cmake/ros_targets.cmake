@@ -33,6 +33,11 @@ target_link_libraries(impulse2d_nodelet PRIVATE impulse2d_ros)
 add_executable(impulse2d_node src/ros/node_main.cpp)
 target_link_libraries(impulse2d_node PRIVATE impulse2d_ros)
 
+# The fleet demo's reactive wanderer (scan in, cmd_vel out); it needs nothing of the engine.
+add_executable(impulse2d_wanderer src/ros/wanderer_main.cpp)
+target_link_libraries(impulse2d_wanderer PRIVATE ${catkin_LIBRARIES})
+add_dependencies(impulse2d_wanderer ${catkin_EXPORTED_TARGETS})
+
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   find_package(roslaunch REQUIRED)
@@ -81,16 +86,24 @@ if(CATKIN_ENABLE_TESTING)
   # Models in namespaces: a scene's, ~spawn_model, ~move_model, ~delete_model; /clock.
   impulse2d_add_node_and_nodelet_rostest(models test/ros/models_test.cpp)
 
+  # The fleet demo as launched, without RViz: every robot wanders.
+  add_rostest_gtest(impulse2d_fleet_tests test/ros/fleet.test test/ros/fleet_test.cpp
+    test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
+  target_link_libraries(impulse2d_fleet_tests ${catkin_LIBRARIES})
+  add_dependencies(impulse2d_fleet_tests impulse2d_node impulse2d_wanderer
+    ${PROJECT_NAME}_generate_messages_cpp)
+
   roslaunch_add_file_check(launch/world.launch)
   roslaunch_add_file_check(launch/robot_demo.launch rviz:=false)
   roslaunch_add_file_check(launch/demo.launch rviz:=false)
+  roslaunch_add_file_check(launch/fleet_demo.launch rviz:=false)
 endif()
 
 install(TARGETS impulse2d_core impulse2d_devices impulse2d_scene impulse2d_sim
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-install(TARGETS impulse2d_node impulse2d_nodelet
+install(TARGETS impulse2d_node impulse2d_nodelet impulse2d_wanderer
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -26,10 +26,10 @@ mkdir -p "$STAGE_RESULTS"
 # all: the gtests, the rostests' clients, the node, the nodelet plugin and the CLI.
 GTESTS=(impulse2d_unit_tests impulse2d_ros_unit_tests impulse2d_sim_world_limits_tests)
 ROSTESTS=(world_node world_nodelet hash hash_threads urdf recipe robot devices devices_nodelet maps
-  maps_nodelet models models_nodelet)
+  maps_nodelet models models_nodelet fleet)
 TARGETS=("${GTESTS[@]}" impulse2d_world_tests impulse2d_hash_test impulse2d_urdf_tests
   impulse2d_recipe_test impulse2d_robot_tests impulse2d_devices_tests impulse2d_maps_tests
-  impulse2d_models_tests impulse2d_node impulse2d_nodelet impulse2d_sim)
+  impulse2d_models_tests impulse2d_fleet_tests impulse2d_wanderer impulse2d_node impulse2d_nodelet impulse2d_sim)
 # Registered with catkin but not run here (they run in the release build of scripts/test.sh):
 # - load.test: 60 s of requests at 1 kHz. Under ASan everything else held (0 unanswered, 0
 #   unexpected, no report) but its resident-memory bound cannot: the node grew 350 MiB during the

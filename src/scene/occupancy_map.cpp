@@ -3,8 +3,9 @@
 #include <impulse2d/limits.hpp>
 #include <impulse2d/occupancy_map.hpp>
 
+#include "scene_parsers.hpp"
+
 #include <stb_image.h>
-#include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -22,16 +23,6 @@ constexpr int8_t kOccupied = 100, kFree = 0, kUnknown = -1;
 constexpr size_t kMaxMapYamlBytes = 1u << 20;
 
 // Only regular files are read: a FIFO or a device named by a request would block or never end.
-// Empty when `path` is a regular file, else why it cannot be read as one: "No such file or
-// directory", "a directory", ... (a FIFO or device would block or never end).
-std::string whyNotAFile(const std::string& path) {
-  struct stat info {};
-  if (stat(path.c_str(), &info) != 0) return std::strerror(errno);
-  if (S_ISDIR(info.st_mode)) return "a directory, not a file";
-  if (!S_ISREG(info.st_mode)) return "not a regular file";
-  return "";
-}
-
 std::string folderOf(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? "" : path.substr(0, slash + 1);
@@ -75,7 +66,7 @@ bool loadMapFile(const std::string& yamlPath, OccupancyGrid* out, std::string* e
     return false;
   };
   // Read with a bound first: a map's YAML is a few lines, and the path may name anything.
-  const std::string notYaml = whyNotAFile(yamlPath);
+  const std::string notYaml = scene_detail::whyNotAFile(yamlPath);
   if (!notYaml.empty()) return fail("cannot open the map's YAML file (" + notYaml + ")");
   std::ifstream file(yamlPath, std::ios::binary);
   if (!file)
@@ -129,7 +120,7 @@ bool loadMapFile(const std::string& yamlPath, OccupancyGrid* out, std::string* e
   const std::string imagePath =
       !image.empty() && image[0] == '/' ? image : folderOf(yamlPath) + image;
   int width = 0, height = 0, channels = 0;
-  const std::string notImage = whyNotAFile(imagePath);
+  const std::string notImage = scene_detail::whyNotAFile(imagePath);
   if (!notImage.empty()) return fail("image: cannot read " + imagePath + " (" + notImage + ")");
   if (stbi_info(imagePath.c_str(), &width, &height, &channels) == 0) {
     return fail("image: cannot read " + imagePath + " (" + stbi_failure_reason() + ")");

@@ -8,6 +8,7 @@
 #include "yaml_document.hpp"
 #include "yaml_fields.hpp"
 
+#include <cstring>
 #include <map>
 
 namespace impulse2d {
@@ -201,6 +202,19 @@ bool parseModel(const std::string& yamlText, Scene* out, std::string* error) {
 }
 
 bool loadModelFile(const std::string& path, Scene* out, std::string* error) {
+  using scene_detail::fail;
+  // The node opens these for ~spawn_model's callers: only regular files (a FIFO would hang it)
+  // named as YAML (nothing else is read, and no other file's lines end up in an error).
+  const bool yaml = [&] {
+    for (const char* ext : {".yaml", ".yml"}) {
+      const size_t n = std::strlen(ext);
+      if (path.size() > n && path.compare(path.size() - n, n, ext) == 0) return true;
+    }
+    return false;
+  }();
+  if (!yaml) return fail(error, path + ": a model file's name ends in .yaml or .yml");
+  const std::string notAFile = scene_detail::whyNotAFile(path);
+  if (!notAFile.empty()) return fail(error, path + ": cannot open (" + notAFile + ")");
   std::string text, why;
   if (!scene_detail::readSceneText(path, &text, error)) return false;
   if (!parseModel(text, out, &why)) return scene_detail::fail(error, path + ": " + why);

@@ -19,6 +19,10 @@ DeviceDef parseDevice(const YAML::Node& node);
 /// A file name of a scene: absolute, relative to paths.folder, or package://PACKAGE/PATH;
 /// throws SceneError("file", ...) when it cannot be resolved.
 std::string resolveFile(const std::string& name, const ScenePaths& paths);
+/// Empty when `path` names a regular file, else why it cannot be read as one: "No such file or
+/// directory", "a directory, not a file", "not a regular file" (a FIFO or a device would block
+/// or never end).
+std::string whyNotAFile(const std::string& path);
 /// Reads a scene's or a model's text, at most kMaxSceneBytes; false with "PATH: why" otherwise.
 bool readSceneText(const std::string& path, std::string* text, std::string* error);
 /// One entry of `maps:`: reads its files and appends its walls to `walls`.

@@ -7,6 +7,8 @@
 #include "scene_parsers.hpp"
 #include "yaml_fields.hpp"
 
+#include <sys/stat.h>
+
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -46,6 +48,14 @@ std::string resolveFile(const std::string& name, const ScenePaths& paths) {
   return paths.folder + (paths.folder.back() == '/' ? "" : "/") + name;
 }
 
+std::string whyNotAFile(const std::string& path) {
+  struct stat info {};
+  if (stat(path.c_str(), &info) != 0) return std::strerror(errno);
+  if (S_ISDIR(info.st_mode)) return "a directory, not a file";
+  if (!S_ISREG(info.st_mode)) return "not a regular file";
+  return "";
+}
+
 bool readSceneText(const std::string& path, std::string* text, std::string* error) {
   auto fail = [&](const std::string& why) {
     if (error != nullptr) *error = path + ": " + why;
@@ -69,8 +79,7 @@ bool readSceneText(const std::string& path, std::string* text, std::string* erro
 
 }  // namespace scene_detail
 
-std::string resolveSceneFile(const std::string& name, const ScenePaths& paths,
-                             std::string* error) {
+std::string resolveSceneFile(const std::string& name, const ScenePaths& paths, std::string* error) {
   try {
     return scene_detail::resolveFile(name, paths);
   } catch (const scene_detail::SceneError& e) {

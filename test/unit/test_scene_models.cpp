@@ -8,6 +8,9 @@
 
 #include "temp_folder.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <string>
 
@@ -175,6 +178,8 @@ devices:
   - {type: bumper, name: b, body: wall}
 )");
   folder.write("nested.yaml", "models: []\n");
+  const std::string directory = folder.path() + "folder.yaml";
+  ASSERT_EQ(mkdir(directory.c_str(), 0700), 0);
   struct Case {
     std::string models;
     std::string error;
@@ -195,6 +200,9 @@ devices:
       {"  - {name: r1, file: nested.yaml}", "nested.yaml: models: unknown key"},
       {"  - {name: r1, file: missing.yaml}", "missing.yaml: cannot open (No such file"},
       {"  - {name: r1}", "models[0] 'r1': file: must be given"},
+      // Only YAML files, and only regular ones (a FIFO would block the node).
+      {"  - {name: r1, file: /etc/hostname}", "a model file's name ends in .yaml or .yml"},
+      {"  - {name: r1, file: folder.yaml}", "folder.yaml: cannot open (a directory, not a file)"},
       {"  - {name: r-1, file: cart.yaml}", "namespace: 'r-1' cannot name topics"},
       {"  - {name: r1, file: cart.yaml, namespace: '1st'}", "namespace: '1st' cannot name topics"},
       {"  - {name: r1, file: cart.yaml, position: [.nan, 0]}", "position, angle: must be finite"},
@@ -217,6 +225,7 @@ devices:
     EXPECT_NE(error.find(c.error), std::string::npos) << c.models << "\n  " << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
+  rmdir(directory.c_str());
 }
 
 TEST(SceneModels, PlaceModelLeavesTheSceneAsItWasWhenItRefuses) {
