@@ -21,37 +21,38 @@ bool isTouching(const Contact& contact) {
 
 void WorldImpl::updateSleep(double dt) {
   const StageClock clock(stage(&StepProfile::sleep));
-  const int slotCount = static_cast<int>(bodies.items.size());
   if (!def.enableSleep) {
     // Nothing may sleep, so no islands are needed. Bodies put to sleep before sleeping was
     // switched off wake up, and stillness counts from zero once it is switched back on.
-    for (int i = 0; i < slotCount; ++i) {
-      if (bodies.alive[i] && bodies.items[i].type == BodyType::Dynamic) wakeBody(bodies.items[i]);
+    for (const int i : movableSlots) {
+      if (bodies.items[i].type == BodyType::Dynamic) wakeBody(bodies.items[i]);
     }
     return;
   }
   const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;
   const double angTol2 = def.sleepAngularTolerance * def.sleepAngularTolerance;
 
-  // Contacts per body as a compressed adjacency list (counts, then offsets), rebuilt each step
-  // into reused buffers.
-  adjacencyStart.assign(slotCount + 1, 0);
+  // Contacts per body that moves, as a compressed adjacency list (counts, then offsets) by its
+  // place in movableSlots, rebuilt each step into reused buffers. Static bodies have none: the
+  // flood fill below never goes on from one, so theirs would never be read.
+  const int movableCount = static_cast<int>(movableSlots.size());
+  adjacencyStart.assign(movableCount + 1, 0);
   for (const Contact& c : contacts) {
     if (!isTouching(c)) continue;
-    ++adjacencyStart[c.bodyA + 1];
-    ++adjacencyStart[c.bodyB + 1];
+    if (isMovable(c.bodyA)) ++adjacencyStart[movableIndex[c.bodyA] + 1];
+    if (isMovable(c.bodyB)) ++adjacencyStart[movableIndex[c.bodyB] + 1];
   }
-  for (int i = 0; i < slotCount; ++i) adjacencyStart[i + 1] += adjacencyStart[i];
-  adjacency.resize(adjacencyStart[slotCount]);
+  for (int k = 0; k < movableCount; ++k) adjacencyStart[k + 1] += adjacencyStart[k];
+  adjacency.resize(adjacencyStart[movableCount]);
   adjacencyFill.assign(adjacencyStart.begin(), adjacencyStart.end() - 1);
   for (const Contact& c : contacts) {
     if (!isTouching(c)) continue;
-    adjacency[adjacencyFill[c.bodyA]++] = c.bodyB;
-    adjacency[adjacencyFill[c.bodyB]++] = c.bodyA;
+    if (isMovable(c.bodyA)) adjacency[adjacencyFill[movableIndex[c.bodyA]]++] = c.bodyB;
+    if (isMovable(c.bodyB)) adjacency[adjacencyFill[movableIndex[c.bodyB]]++] = c.bodyA;
   }
 
-  for (int i = 0; i < slotCount; ++i) {
-    if (!movable[i]) continue;  // static bodies are never flagged: only dynamic ones join islands
+  // Static bodies are never flagged: only dynamic ones join islands.
+  for (const int i : movableSlots) {
     Body& body = bodies.items[i];
     body.islandFlag = 0;
     if (body.type != BodyType::Dynamic || !body.awake) continue;
@@ -72,8 +73,7 @@ void WorldImpl::updateSleep(double dt) {
 
   // Flood fill from each awake dynamic body. A sleeping body reached from an awake one is woken:
   // something touches it.
-  for (int seed = 0; seed < slotCount; ++seed) {
-    if (!movable[seed]) continue;
+  for (const int seed : movableSlots) {
     Body& start = bodies.items[seed];
     if (start.type != BodyType::Dynamic || !start.awake || start.islandFlag) {
       continue;
@@ -100,7 +100,8 @@ void WorldImpl::updateSleep(double dt) {
         next.islandFlag = 1;
         islandStack.push_back(other);
       };
-      for (int k = adjacencyStart[index]; k < adjacencyStart[index + 1]; ++k) visit(adjacency[k]);
+      const int place = movableIndex[index];
+      for (int k = adjacencyStart[place]; k < adjacencyStart[place + 1]; ++k) visit(adjacency[k]);
       for (const int j : jointsOfBody[index]) {
         const Joint& joint = joints.items[j];
         visit(joint.bodyA == index ? joint.bodyB : joint.bodyA);

@@ -5,16 +5,17 @@
 
 namespace impulse2d {
 
-void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& movable,
+void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
                            const Vec2& gravity, double h, const MotionLimits& limits,
                            const WeldClusters& clusters, StepWorkers& workers) {
   bodies_ = &bodies;
   limits_ = limits;
-  const int slots = static_cast<int>(bodies.size());
-  const int blocks = (slots + kSlotsPerBlock - 1) / kSlotsPerBlock;
+  // Blocks of the moving bodies' slots (static bodies have no row and cost nothing here).
+  const int movables = static_cast<int>(movableSlots.size());
+  const int blocks = (movables + kSlotsPerBlock - 1) / kSlotsPerBlock;
   auto rowOf = [&](int i) {  // 0: none, 1: a dynamic row, 2: a kinematic one
     const Body& body = bodies[i];
-    if (!movable[i] || !body.awake) return 0;
+    if (!body.awake) return 0;
     const int cluster = clusters.clusterOf(i);
     if (cluster >= 0 && clusters.root(cluster) != i) return 0;  // the root's row moves it
     return body.type == BodyType::Dynamic ? 1 : 2;
@@ -23,8 +24,9 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   // then kinematic ones, each in slot order, as if one thread had gone through the slots.
   blockFirst_.assign(2 * static_cast<size_t>(blocks) + 2, 0);
   workers.stage(blocks, [&](int block, int) {
-    for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
-      const int kind = rowOf(i);
+    const int end = std::min(movables, (block + 1) * kSlotsPerBlock);
+    for (int k = block * kSlotsPerBlock; k < end; ++k) {
+      const int kind = rowOf(movableSlots[k]);
       if (kind != 0) ++blockFirst_[2 * (block + 1) + (kind - 1)];
     }
   });
@@ -38,12 +40,14 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<ch
   sims_.resize(static_cast<size_t>(movingCount_));
   starts_.resize(static_cast<size_t>(movingCount_));
   loads_.resize(static_cast<size_t>(dynamicCount_));
-  entryOfSlot_.resize(bodies.size());
+  entryOfSlot_.assign(bodies.size(), -1);
   overflowedOfBlock_.resize(static_cast<size_t>(blocks));
   workers.stage(blocks, [&](int block, int) {
     int next[2] = {blockFirst_[2 * block], dynamicCount_ + blockFirst_[2 * block + 1]};
     overflowedOfBlock_[block].clear();
-    for (int i = block * kSlotsPerBlock; i < std::min(slots, (block + 1) * kSlotsPerBlock); ++i) {
+    const int end = std::min(movables, (block + 1) * kSlotsPerBlock);
+    for (int k = block * kSlotsPerBlock; k < end; ++k) {
+      const int i = movableSlots[k];
       const int kind = rowOf(i);
       entryOfSlot_[i] = kind == 0 ? -1 : next[kind - 1]++;
       if (kind != 0 && !add(bodies[i], i, entryOfSlot_[i], gravity, h)) {

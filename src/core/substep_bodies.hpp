@@ -56,12 +56,13 @@ struct BodyStart {
 
 class SubstepBodies {
  public:
-  /// Starts a step of sub-steps of h: a row for every living, awake, non-static body (dynamic
-  /// first, in slot order), then the identity row and `workers` sinks.
+  /// Starts a step of sub-steps of h: a row for every awake body of `movableSlots` (the living
+  /// non-static ones, ascending; dynamic first, in slot order), then the identity row and
+  /// `workers` sinks.
   /// Dynamic bodies move within `limits` (motion_limits.hpp). A body whose velocity or load is
   /// not finite is held still with infinite mass instead, and listed in overflowed().
   /// Each welded cluster gets one row, its root's, which every member's slot reads and writes.
-  void gather(const std::vector<Body>& bodies, const std::vector<char>& movable,
+  void gather(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
               const Vec2& gravity, double h, const MotionLimits& limits,
               const WeldClusters& clusters, StepWorkers& workers);
   const std::vector<int>& overflowed() const { return overflowed_; }
@@ -114,7 +115,7 @@ class SubstepBodies {
   void finish(std::vector<Body>& bodies, int begin, int end) const;
 
  private:
-  static constexpr int kSlotsPerBlock = 1024;
+  static constexpr int kSlotsPerBlock = 1024;  // movable slots per block of gather's stages
   /// Fills the entry's rows; false for a body held still (see gather()).
   bool add(const Body& body, int slot, int entry, const Vec2& gravity, double h);
   /// Fills a cluster's row (its root's entry) and its members' starts.

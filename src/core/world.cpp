@@ -26,6 +26,23 @@ void WorldImpl::markMoved(int proxy) {
   movedProxies.push_back(proxy);
 }
 
+void WorldImpl::addMovable(int slot) {
+  if (slot >= static_cast<int>(movableIndex.size())) movableIndex.resize(slot + 1, -1);
+  const auto at = std::lower_bound(movableSlots.begin(), movableSlots.end(), slot);
+  const size_t from = static_cast<size_t>(at - movableSlots.begin());
+  movableSlots.insert(at, slot);
+  // A slot reused below the highest one shifts the places after it (new slots come last).
+  for (size_t k = from; k < movableSlots.size(); ++k) movableIndex[movableSlots[k]] = k;
+}
+
+void WorldImpl::removeMovable(int slot) {
+  if (!isMovable(slot)) return;
+  const size_t from = static_cast<size_t>(movableIndex[slot]);
+  movableSlots.erase(movableSlots.begin() + from);
+  movableIndex[slot] = -1;
+  for (size_t k = from; k < movableSlots.size(); ++k) movableIndex[movableSlots[k]] = k;
+}
+
 void WorldImpl::createProxies(Body& body) {
   body.proxies.clear();
   body.proxyXf = body.xf;
@@ -163,8 +180,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   body.id = BodyId{slot, w.bodies.generation[slot]};
   body.name = def.name;
   body.type = def.type;
-  if (slot >= static_cast<int>(w.movable.size())) w.movable.resize(slot + 1, 0);
-  w.movable[slot] = def.type == BodyType::Static ? 0 : 1;
+  if (def.type != BodyType::Static) w.addMovable(slot);
   body.shapes = std::move(shapes);
   body.angle = def.angle;
   body.xf = Transform(def.position, Rot(def.angle));
@@ -214,7 +230,7 @@ bool World::destroyBody(BodyId id) {
   w.shapeCount -= body.shapes.size();
   if (!body.name.empty()) w.bodyByName.erase(body.name);
   w.bodies.release(id.index);
-  w.movable[id.index] = 0;
+  w.removeMovable(id.index);
   w.jointsOfBody[id.index].clear();
   return true;
 }

@@ -99,12 +99,11 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   // nothing here.
   std::vector<int>& candidates = lostCandidates;
   candidates.clear();
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    if (!movable[i]) continue;
+  for (const int i : movableSlots) {
     Body& body = bodies.items[i];
     if (body.type != BodyType::Dynamic || !body.awake) continue;
     if (floor.top(body) > floor.deepest + floor.height) {
-      candidates.push_back(static_cast<int>(i));
+      candidates.push_back(i);
     } else {
       body.lost = false;  // back, or never gone
     }
@@ -113,8 +112,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
 
   // A kinematic body below the static ones may still catch it.
   double floorLine = floor.deepest;
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    if (!movable[i]) continue;
+  for (const int i : movableSlots) {
     const Body& body = bodies.items[i];
     if (body.type == BodyType::Kinematic) {
       floorLine = std::max(floorLine, floor.bottom(body));
@@ -194,8 +192,7 @@ void World::removeEscapedBodies() {
   // Only what moves can leave: static bodies never do (the solver never writes them), and
   // sleeping ones have not moved since they were checked.
   std::vector<RemovedBody> escaped;
-  for (size_t i = 0; i < w.bodies.items.size(); ++i) {
-    if (!w.movable[i]) continue;
+  for (const int i : w.movableSlots) {
     const Body& body = w.bodies.items[i];
     if (!body.awake) continue;
     RemovalCause cause;

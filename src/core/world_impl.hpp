@@ -97,10 +97,16 @@ struct WorldImpl {
   double* stage(double StepProfile::*field) { return profiling ? &(profile.*field) : nullptr; }
   StepProfile* profiled() { return profiling ? &profile : nullptr; }
   Slots<Body> bodies;
-  /// By body slot: 1 for a living body that is not static (types never change). The per-step
-  /// scans over the slots read this before the Body, so that static bodies (a map's walls) cost
-  /// them a byte each, not a Body's cache lines.
-  std::vector<char> movable;
+  /// The slots of living bodies that are not static (types never change), ascending, and each
+  /// slot's place in that list (-1: static or free). The per-step scans go through this list, in
+  /// slot order as before, so static bodies (a map's walls) cost a step nothing.
+  std::vector<int> movableSlots;
+  std::vector<int> movableIndex;
+  void addMovable(int slot);
+  void removeMovable(int slot);
+  bool isMovable(int slot) const {
+    return slot < static_cast<int>(movableIndex.size()) && movableIndex[slot] >= 0;
+  }
   Slots<Joint> joints;
   std::vector<JointDef> jointDefs;  // by joint slot: as created (names), for World::jointDef
   std::vector<std::vector<int>> jointsOfBody;  // by body slot

@@ -61,15 +61,15 @@ void WorldImpl::updateBroadPhase() {
   const StageClock clock(stage(&StepProfile::broadPhase));
   // In parallel: the shapes of moving bodies that left their fat boxes (most move less than the
   // margin and need nothing). Then in slot order, one thread: the tree moves them.
-  const int slots = static_cast<int>(bodies.items.size());
-  const int blocks = (slots + kBodiesPerBlock - 1) / kBodiesPerBlock;
+  const int movables = static_cast<int>(movableSlots.size());
+  const int blocks = (movables + kBodiesPerBlock - 1) / kBodiesPerBlock;
   refits.resize(static_cast<size_t>(blocks));
   stepWorkers.stage(blocks, [&](int block, int) {
     std::vector<std::pair<int, Aabb>>& out = refits[block];
     out.clear();
-    for (int i = block * kBodiesPerBlock; i < std::min(slots, (block + 1) * kBodiesPerBlock); ++i) {
-      if (!movable[i]) continue;
-      Body& body = bodies.items[i];
+    const int end = std::min(movables, (block + 1) * kBodiesPerBlock);
+    for (int k = block * kBodiesPerBlock; k < end; ++k) {
+      Body& body = bodies.items[movableSlots[k]];
       if (!body.awake || movedLessThanMargin(body)) continue;
       const size_t before = out.size();
       for (size_t k = 0; k < body.shapes.size(); ++k) {
@@ -355,8 +355,7 @@ void WorldImpl::correctPositions() {
 }
 
 void WorldImpl::clearForces() {
-  for (size_t i = 0; i < bodies.items.size(); ++i) {
-    if (!movable[i]) continue;  // a static body never gathers a force
+  for (const int i : movableSlots) {  // a static body never gathers a force
     bodies.items[i].force.setZero();
     bodies.items[i].torque = 0.0;
   }

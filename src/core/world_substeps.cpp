@@ -95,7 +95,7 @@ void WorldImpl::solveSubsteps(double dt) {
   SubstepBodies& sb = substepBodies;
   StageLaps laps(profiled());
   weldClusters.find(bodies.items, bodies.alive, joints.items, joints.alive);
-  sb.gather(bodies.items, movable, def.gravity, h, MotionLimits::of(def, h), weldClusters,
+  sb.gather(bodies.items, movableSlots, def.gravity, h, MotionLimits::of(def, h), weldClusters,
             stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
   laps.lap(&StepProfile::prepare);

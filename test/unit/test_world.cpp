@@ -30,6 +30,35 @@ TEST(World, HandlesGoStaleWhenTheirBodyIsDestroyed) {
   EXPECT_EQ(world.bodyCount(), 1u);
 }
 
+TEST(World, BodiesInReusedSlotsMoveAsTheirTypeSays) {
+  // The step goes through the moving bodies' slots only: slots freed and taken again by bodies
+  // of another type, below and above the others, must still move exactly the moving ones.
+  World world;  // gravity -9.81 on y, no ground: everything that moves falls freely
+  const BodyId a = addBox(world, "a", Vec2(0, 0), 1, 1, BodyType::Dynamic);
+  const BodyId b = addBox(world, "b", Vec2(3, 0), 1, 1, BodyType::Dynamic);
+  const BodyId c = addBox(world, "c", Vec2(6, 0), 1, 1, BodyType::Dynamic);
+  ASSERT_TRUE(world.destroyBody(b));
+  const BodyId wall = addBox(world, "wall", Vec2(3, 0), 1, 1, BodyType::Static);  // b's slot
+  ASSERT_EQ(wall.index, b.index);
+  ASSERT_TRUE(world.destroyBody(a));
+  const BodyId d = addBox(world, "d", Vec2(0, 0), 1, 1, BodyType::Dynamic);  // a's slot, lowest
+  ASSERT_EQ(d.index, a.index);
+  ASSERT_TRUE(world.destroyBody(c));
+  const BodyId e = addBox(world, "e", Vec2(6, 0), 1, 1, BodyType::Kinematic);  // c's slot
+  world.setVelocity(e, Vec2(1, 0), 0.0);
+  for (int i = 0; i < 60; ++i) world.step();
+  const double t = 60 * world.settings().timeStep;
+  EXPECT_NEAR(world.body(d).xf.p.y(), -0.5 * 9.81 * t * t, 0.05 * 9.81 * t * t);
+  EXPECT_EQ(world.body(wall).xf.p, Vec2(3, 0));
+  EXPECT_NEAR(world.body(e).xf.p.x(), 6.0 + t, 1e-9);
+  EXPECT_EQ(world.body(e).xf.p.y(), 0.0);
+  // Destroying the static body leaves the moving ones moving.
+  ASSERT_TRUE(world.destroyBody(wall));
+  const double y = world.body(d).xf.p.y();
+  world.step();
+  EXPECT_LT(world.body(d).xf.p.y(), y);
+}
+
 TEST(World, RefusesDuplicateNamesAndBadBodiesWithoutChangingAnything) {
   World world;
   addBox(world, "a", Vec2(0, 0), 1, 1, BodyType::Dynamic);
