@@ -26,6 +26,7 @@ function(impulse2d_add_fuzzers)
   add_library(impulse2d_fuzz_sim_world STATIC ${PROJECT_SOURCE_DIR}/src/ros/sim_world.cpp
     ${PROJECT_SOURCE_DIR}/src/ros/sim_world_devices.cpp
     ${PROJECT_SOURCE_DIR}/src/ros/sim_world_maps.cpp
+    ${PROJECT_SOURCE_DIR}/src/ros/sim_world_models.cpp
     ${PROJECT_SOURCE_DIR}/src/ros/sim_world_queries.cpp
     ${PROJECT_SOURCE_DIR}/src/ros/sim_world_urdf.cpp)
   target_include_directories(impulse2d_fuzz_sim_world PUBLIC ${PROJECT_SOURCE_DIR}/src/ros)

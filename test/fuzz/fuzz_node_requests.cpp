@@ -1,7 +1,8 @@
 // The node's request path below the message conversion: a sequence of spawn, delete, joint,
-// wrench, state, scene, step and reset requests decoded from the input, applied to the
-// ROS-free SimWorld that WorldNode serialises its services onto (src/ros/sim_world.cpp, which
-// relies on World::validate in src/core/validation.cpp). Requests carry any numbers (NaN, inf,
+// wrench, state, scene, model (spawned from YAML text, moved, deleted), step and reset requests
+// decoded from the input, applied to the ROS-free SimWorld that WorldNode serialises its
+// services onto (src/ros/sim_world*.cpp, which rely on World::validate in
+// src/core/validation.cpp). Requests carry any numbers (NaN, inf,
 // huge), names of any bytes and lengths, and out-of-range enum values. Every request is either
 // refused with a message and the world unchanged (same hash, same counts), or accepted; after
 // every step the state is finite.
@@ -161,7 +162,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     error.clear();
     bool ok = true;
     bool changesWorld = true;
-    const int kind = in.byte() % 10;
+    const int kind = in.byte() % 13;
     if (trace) std::fprintf(stderr, "request %d: kind %d\n", request, kind);
     switch (kind) {
       case 0:
@@ -211,6 +212,25 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       case 7:
         ok = sim.addScene(in.text(255), &error);
         break;
+      case 9: {
+        impulse2d::bridge::ModelRequest model;
+        model.where.name = name(in);
+        model.where.ns = name(in);
+        model.where.position = Vec2(in.number(-20, 20), in.number(-20, 20));
+        model.where.angle = in.number(-4, 4);
+        model.yaml = in.text(255);
+        ok = sim.spawnModel(model, nullptr, &error);
+        break;
+      }
+      case 10:
+        ok = sim.deleteModel(name(in), &error);
+        break;
+      case 11: {
+        const std::string target = name(in);
+        const Vec2 position(in.number(-20, 20), in.number(-20, 20));
+        ok = sim.moveModel(target, position, in.number(-4, 4), &error);
+        break;
+      }
       case 8:
         for (int i = 1 + in.byte() % 8; i > 0; --i) sim.step();
         checkFinite(sim);
