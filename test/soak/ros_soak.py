@@ -8,7 +8,8 @@ node or as a nodelet) on a master of its own, subscribes /tf, ~markers and ~cont
 clients for S seconds (default 30). Each client spawns boxes, circles and polygons (some bullet,
 one in five kinematic), deletes them, joins them with joints of all four types anchored anywhere,
 deletes joints, teleports, pushes, sets motors, reads states, casts rays, queries points, pauses,
-steps and unpauses, and sends bad requests. A controller calls ~reset at a third of the run and
+steps and unpauses, spawns, moves and deletes models (two jointed bodies with a laser and a
+bumper, whose topics come and go), and sends bad requests. A controller calls ~reset at a third of the run and
 ~load_scene at two thirds. Checked, each a JUnit case per mode:
   - every call answered within 1 s;
   - every bad request refused, every valid one accepted (or refused for a stated reason the
@@ -34,6 +35,18 @@ from xml.sax.saxutils import escape
 SLOW_CALL = 1.0  # s
 RSS_GROWTH_LIMIT = 64 * 1024  # KiB
 HALF_WIDTH, HEIGHT = 10.0, 20.0
+# What ~spawn_model places: two bodies on a revolute joint with a laser and a bumper (their topics
+# open and close with the model, under its namespace).
+MODEL_YAML = """
+bodies:
+  - {name: base, shapes: [{type: box, size: [0.6, 0.3]}]}
+  - {name: wheel, position: [0.3, -0.2], shapes: [{type: circle, radius: 0.12}]}
+joints:
+  - {name: axle, type: revolute, body_a: base, body_b: wheel, anchor: [0.3, -0.2]}
+devices:
+  - {type: laser, name: laser, body: base, angle_increment: 0.05, update_rate: 5}
+  - {type: bumper, name: bumper, body: base}
+"""
 
 
 def rss_kib(pid):
@@ -64,10 +77,11 @@ class Client:
         self.generation, self.seen_generation = generation, generation.value
         self.random = random.Random(seed * 1000 + index)
         self.bodies, self.joints, self.next_name = [], [], 0
+        self.models = {}  # model name -> its bodies' names
         self.last = []  # the last calls, for a failure report
         self.counts = {"calls": 0, "slow": 0, "bad": 0, "bad_accepted": 0, "refused": 0,
                        "unexpected": 0, "errors": 0, "bodies_made": 0, "joints_made": 0,
-                       "slowest_ms": 0}
+                       "models_made": 0, "slowest_ms": 0}
         self.failures = []
         self.proxies = {}
 
@@ -125,7 +139,7 @@ class Client:
     def sync_generation(self):
         if self.generation.value != self.seen_generation:
             self.seen_generation = self.generation.value
-            self.bodies, self.joints = [], []
+            self.bodies, self.joints, self.models = [], [], {}
 
     # --- requests ---
     def point(self, margin=0.0):
@@ -274,6 +288,35 @@ class Client:
         r.release = self.random.random() < 0.3
         self.call("set_joint_motor", self.srv.SetJointMotor, r, name=r.name)  # weld/distance: refused
 
+    def spawn_model(self):
+        if len(self.models) >= 4:  # devices are bounded per world (1024)
+            return
+        name = "c%d_m%d" % (self.index, self.next_name)
+        self.next_name += 1
+        r = self.srv.SpawnModelRequest(model_name=name, model_yaml=MODEL_YAML)
+        r.pose.x, r.pose.y = self.point(1.5)
+        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        response = self.call("spawn_model", self.srv.SpawnModel, r, expect=True, name=name)
+        if response is not None and response.success:
+            self.models[name] = list(response.bodies)
+            self.counts["models_made"] += 1
+
+    def move_model(self):
+        if not self.models:
+            return
+        r = self.srv.MoveModelRequest(model_name=self.random.choice(sorted(self.models)))
+        r.pose.x, r.pose.y = self.point(1.5)
+        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        self.call("move_model", self.srv.MoveModel, r, expect=True, name=r.model_name)
+
+    def delete_model(self):
+        if not self.models:
+            return
+        name = self.random.choice(sorted(self.models))
+        del self.models[name]
+        self.call("delete_model", self.srv.DeleteModel, self.srv.DeleteModelRequest(model_name=name),
+                  expect=True, name=name)
+
     def pause_step(self):
         self.call("pause", self.Empty, self.Empty._request_class())
         self.call("step", self.srv.Step, self.srv.StepRequest(steps=self.random.randint(1, 5)),
@@ -282,7 +325,7 @@ class Client:
 
     def bad(self):
         m, srv = self.msg, self.srv
-        kind = self.random.randrange(6)
+        kind = self.random.randrange(9)
         body = m.Body(name="c%d_bad%d" % (self.index, self.next_name), type=m.Body.DYNAMIC,
                       shapes=[self.shape()])
         self.next_name += 1
@@ -306,11 +349,24 @@ class Client:
             j = m.Joint(name="c%d_badj" % self.index, type=m.Joint.REVOLUTE, body_a="no_such",
                         body_b="ground")
             self.call("create_joint", srv.CreateJoint, srv.CreateJointRequest(joint=j), expect=False)
+        elif kind == 6:  # only .yaml files are read
+            self.call("spawn_model", srv.SpawnModel,
+                      srv.SpawnModelRequest(model_name="c%d_badm" % self.index, file="/etc/hostname"),
+                      expect=False)
+        elif kind == 7:  # not a model
+            self.call("spawn_model", srv.SpawnModel,
+                      srv.SpawnModelRequest(model_name="c%d_badm" % self.index,
+                                            model_yaml="world: {gravity: [0, 0]}"),
+                      expect=False)
+        elif kind == 8:
+            self.call("move_model", srv.MoveModel, srv.MoveModelRequest(model_name="no_such_model"),
+                      expect=False)
 
     def run(self):
-        ops = [(0.22, self.spawn), (0.08, self.delete), (0.18, self.join), (0.05, self.unjoin),
-               (0.07, self.teleport), (0.08, self.push), (0.17, self.read), (0.03, self.motor),
-               (0.02, self.pause_step), (0.10, self.bad)]
+        ops = [(0.20, self.spawn), (0.08, self.delete), (0.18, self.join), (0.05, self.unjoin),
+               (0.07, self.teleport), (0.08, self.push), (0.15, self.read), (0.03, self.motor),
+               (0.02, self.pause_step), (0.015, self.spawn_model), (0.02, self.move_model),
+               (0.01, self.delete_model), (0.095, self.bad)]
         while time.time() < self.deadline:
             self.sync_generation()
             if len(self.bodies) > 60:
@@ -327,7 +383,7 @@ class Client:
         """Every body still held is present, or was reported removed."""
         self.sync_generation()
         missing = []
-        for name in self.bodies:
+        for name in self.bodies + [b for bodies in self.models.values() for b in bodies]:
             r = self.proxy("get_body_state", self.srv.GetBodyState)(self.srv.GetBodyStateRequest(name=name))
             if not r.success and name not in removed:
                 missing.append(name)
@@ -460,12 +516,12 @@ def run_mode(mode, args, port):
         cases.append(("%s: topics flowing" % mode,
                       None if all(seen[k] > 0 for k in seen) else "received %s" % seen))
         print("ros soak %s seed %d: %d s, %d clients, %d calls (%d bad, refused; slowest %d ms), %d "
-              "bodies and %d joints made, %d removed, reset and load_scene %s, RSS %s -> %s KiB, "
+              "bodies, %d joints and %d models made, %d removed, reset and load_scene %s, RSS %s -> %s KiB, "
               "messages %s"
               % (mode, args.seed, args.seconds, args.clients, counts.get("calls", 0),
                  counts.get("bad", 0) - counts.get("bad_accepted", 0), counts.get("slowest_ms", 0),
                  counts.get("bodies_made", 0),
-                 counts.get("joints_made", 0), removed["count"], events, rss_start, rss_end, seen),
+                 counts.get("joints_made", 0), counts.get("models_made", 0), removed["count"], events, rss_start, rss_end, seen),
               flush=True)
         for f in failures[:10]:
             print("  " + f, file=sys.stderr)
