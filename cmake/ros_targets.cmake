@@ -45,7 +45,8 @@ if(CATKIN_ENABLE_TESTING)
   # Conversions, the ~scene parameter and the markers, without a master.
   catkin_add_gtest(impulse2d_ros_unit_tests test/ros/conversions_test.cpp
     test/ros/device_messages_test.cpp test/ros/markers_test.cpp test/ros/sim_world_devices_test.cpp
-    test/ros/sim_world_maps_test.cpp test/ros/sim_world_models_test.cpp)
+    test/ros/sim_world_maps_test.cpp test/ros/sim_world_models_test.cpp
+    test/ros/sim_world_wheels_test.cpp)
   target_link_libraries(impulse2d_ros_unit_tests impulse2d_ros GTest::gtest_main)
   target_compile_definitions(impulse2d_ros_unit_tests PRIVATE
     IMPULSE2D_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -94,6 +94,7 @@ void SimWorld::restoreStart() {
   wrenches_.clear();
   urdfJoints_.clear();
   urdfFrames_.clear();
+  foldedJoints_.clear();
   devices_->clear();
   scans_.clear();
   imuReadings_.clear();
@@ -389,6 +390,7 @@ void SimWorld::step() {
     }
   }
   devices_->afterStep(*world_, 1e-9 * static_cast<double>(simTimeNs_));
+  rollFoldedWheels();
   collectDeviceReadings(removedAny);
 }
 

@@ -190,6 +190,8 @@ struct UrdfRequest {
   std::string xml;
   Vec2 position = Vec2::Zero();
   double angle = 0.0;
+  /// Top-down worlds: refuse a wheel's joint (an axis in the floor) instead of folding it.
+  bool strict = false;
 };
 struct UrdfSpawned {
   std::vector<std::string> bodies, joints, warnings;
@@ -266,7 +268,11 @@ class SimWorld {
   /// and the URDF velocity and effort limits clamp them. `release` switches the motor off.
   bool setJointMotor(const std::string& name, double speed, double maxEffort, bool release,
                      std::string* error);
+  /// The URDF models' joints: the world's revolute and prismatic ones, then those a top-down
+  /// world folded into bodies (wheels, at the angle they rolled to; others at 0).
   std::vector<JointReading> urdfJointStates() const;
+  /// The folded joints' child links (wheels) at their joint positions, for /tf: they turn.
+  std::vector<FixedFrame> rollingFrames() const;
 
   // Models (sim_world_models.cpp): a scene's `models:` and those spawned since. A model spawned
   // here is gone after reset(), as a spawned body is; the start scene's come back.
@@ -374,6 +380,19 @@ class SimWorld {
     double maxVelocity = 0.0;
   };
   void respawnStartUrdfs();
+  /// A joint folded into a body (UrdfFoldedJoint in urdf.hpp, which the node's headers leave
+  /// out), with the position its wheel rolled to.
+  struct FoldedJoint {
+    std::string name, link;
+    BodyId body;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+    Vec2 center = Vec2::Zero(), planeAxis = Vec2::UnitY();
+    double wheelRadius = 0.0;
+    double position = 0.0, velocity = 0.0;
+  };
+  /// After a step: the folded wheels roll with their bodies (or with the body's drive).
+  void rollFoldedWheels();
   /// A model in the world: its bodies by id, so that a user's body that took the name of one
   /// removed since is never taken for it.
   struct PlacedModel {
@@ -402,6 +421,7 @@ class SimWorld {
   std::vector<UrdfJoint> urdfJoints_;
   std::vector<UrdfRequest> startUrdfs_;
   std::vector<FixedFrame> urdfFrames_;  ///< of the models spawned since the last restoreStart
+  std::vector<FoldedJoint> foldedJoints_;
   std::unique_ptr<DeviceSet> devices_;
   std::vector<DeviceDef> startDevices_;  ///< the start scene's devices
   bool startDevicesAttached_ = false;

@@ -2,6 +2,8 @@
 // motors. No ROS header may appear here (see sim_world.hpp).
 #include "sim_world.hpp"
 
+#include <impulse2d/devices.hpp>
+#include <impulse2d/drive.hpp>
 #include <impulse2d/urdf.hpp>
 #include <impulse2d/world.hpp>
 
@@ -18,6 +20,7 @@ bool SimWorld::spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* 
   placement.position = request.position;
   placement.angle = request.angle;
   placement.plane = plane_;
+  placement.strict = request.strict;
   UrdfModel model;
   if (!parseUrdf(request.xml, placement, &model, error)) return false;
   std::vector<BodyId> bodies;
@@ -43,9 +46,53 @@ bool SimWorld::spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* 
     const UrdfJointInfo& info = model.joints[i];
     urdfJoints_.push_back({joints[i], info.name, info.sign, info.maxEffort, info.maxVelocity});
   }
+  foldedJoints_.erase(
+      std::remove_if(foldedJoints_.begin(), foldedJoints_.end(),
+                     [&](const FoldedJoint& j) { return !world_->isValid(j.body); }),
+      foldedJoints_.end());
+  for (const UrdfFoldedJoint& f : model.folded) {
+    foldedJoints_.push_back({f.name, f.link, world_->findBody(f.body), f.pose, f.axis, f.center,
+                             f.planeAxis, f.wheelRadius});
+  }
   ++staticVersion_;
   if (atStart) startUrdfs_.push_back(request);
   return true;
+}
+
+void SimWorld::rollFoldedWheels() {
+  const double dt = timeStep();
+  for (FoldedJoint& joint : foldedJoints_) {
+    if (joint.wheelRadius <= 0.0 || !world_->isValid(joint.body)) continue;
+    const Body& body = world_->body(joint.body);
+    // The wheel centre's velocity in the body frame: the drive's wheel speeds when the body has
+    // a drive (they spin against a wall too), else the body's own motion.
+    Vec2 origin = body.xf.q.applyInverse(body.velocityAt(body.xf.p));
+    double turn = body.angularVelocity;
+    for (const Device& device : devices_->devices()) {
+      if (device.drive && device.body == joint.body) {
+        origin = Vec2(device.drive->speed(), device.drive->sideSpeed());
+        turn = device.drive->turnRate();
+      }
+    }
+    const Vec2 atCenter = origin + turn * Vec2(-joint.center.y(), joint.center.x());
+    // Rolling without slip about the axis a: the centre moves along (a_y, -a_x) at rate * r.
+    const Vec2 forward(joint.planeAxis.y(), -joint.planeAxis.x());
+    joint.velocity = atCenter.dot(forward) / joint.wheelRadius;
+    joint.position += joint.velocity * dt;
+  }
+}
+
+std::vector<FixedFrame> SimWorld::rollingFrames() const {
+  std::vector<FixedFrame> out;
+  for (const FoldedJoint& joint : foldedJoints_) {
+    if (joint.link.empty() || !world_->isValid(joint.body)) continue;
+    FixedFrame frame;
+    frame.name = joint.link;
+    frame.parent = frame.owner = world_->body(joint.body).name;
+    frame.pose = joint.pose * Eigen::AngleAxisd(joint.position, joint.axis);
+    out.push_back(frame);
+  }
+  return out;
 }
 
 void SimWorld::respawnStartUrdfs() {
@@ -106,6 +153,9 @@ std::vector<JointReading> SimWorld::urdfJointStates() const {
     // Adding 0.0 turns a -0.0 (a resting joint with sign -1) into 0.0 for readers.
     out.push_back(
         {joint.name, joint.sign * state.position + 0.0, joint.sign * state.velocity + 0.0});
+  }
+  for (const FoldedJoint& joint : foldedJoints_) {
+    if (world_->isValid(joint.body)) out.push_back({joint.name, joint.position, joint.velocity});
   }
   return out;
 }

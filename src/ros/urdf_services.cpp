@@ -44,6 +44,7 @@ void WorldNode::loadStartUrdf() {
   pnh_.param("urdf_theta", theta, 0.0);
   request.position = Vec2(x, y);
   request.angle = theta;
+  pnh_.param("urdf_strict", request.strict, false);
   UrdfSpawned spawned;
   std::string error;
   if (!sim_.spawnUrdf(request, true, &spawned, &error)) {
@@ -76,6 +77,7 @@ bool WorldNode::spawnUrdf(SpawnUrdf::Request& req, SpawnUrdf::Response& res) {
   request.xml = req.urdf_xml;
   request.position = Vec2(req.pose.x, req.pose.y);
   request.angle = req.pose.theta;
+  request.strict = req.strict;
   UrdfSpawned spawned;
   std::string error;
   {

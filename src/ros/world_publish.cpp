@@ -42,6 +42,7 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
   std::vector<JointReading> jointReadings;
   std::vector<OdometryReading> odometry;
   std::vector<FixedFrame> fixedFrames;
+  std::vector<FixedFrame> rollingFrames;
   {
     Lock lock(*this);
     simTimeNs = sim_.simTimeNs();
@@ -54,6 +55,7 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
     if (wantMarkers) scene.joints = sim_.joints();
     staticVersion = sim_.staticVersion();
     jointReadings = sim_.urdfJointStates();
+    rollingFrames = sim_.rollingFrames();
     odometry = sim_.odometry();
     if (!staticPublished_ || staticVersion != publishedStaticVersion_) {
       fixedFrames = sim_.fixedFrames();
@@ -72,6 +74,10 @@ void WorldNode::onPublishTimer(const ros::WallTimerEvent&) {
       if (body.type == BodyType::Static || body.name.empty()) continue;
       if (std::find(driven.begin(), driven.end(), body.name) != driven.end()) continue;
       tf.transforms.push_back(bodyTransform(scene.plane, scene.frameId, scene.stamp, body));
+    }
+    // Wheels folded into their bodies turn with their joint positions.
+    for (const FixedFrame& frame : rollingFrames) {
+      tf.transforms.push_back(fixedTransform(scene.plane, scene.frameId, frame, scene.stamp));
     }
     if (!tf.transforms.empty()) tfPub_.publish(tf);
     tfPublished_ = true;

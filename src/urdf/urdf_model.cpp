@@ -1,7 +1,14 @@
 // URDF onto the plane: links joined by fixed joints become one body, revolute/continuous joints
 // about the plane normal and prismatic joints along the plane become world joints, floating and
 // planar joints leave their child free. A root link named "world" is the ground (gazebo's
-// convention): what is fixed to it becomes static.
+// convention): what is fixed to it becomes static. Seen from above (plane xy), a revolute or
+// continuous joint about an axis in the floor (a wheel's) is folded: its child joins its parent's
+// body as if fixed, and the joint is kept aside for joint_states (UrdfFoldedJoint).
+//
+//        side view                      top view (xy)
+//     base ====O==== base           +-----------+
+//              ^ wheel_joint         |   base    |   the wheel's cylinder lying down is a
+//         axis into the page       [=]         [=]  rectangle 2r x length of the base body
 #include <impulse2d/urdf.hpp>
 
 #include "link_geometry.hpp"
@@ -10,6 +17,7 @@
 
 #include "names.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -42,6 +50,14 @@ struct MovingJoint {
   size_t childGroup = 0;
 };
 
+// A joint folded into its parent's body (top-down worlds).
+struct Fold {
+  const urdf::Joint* joint = nullptr;
+  size_t group = 0;
+  const urdf::Link* child = nullptr;
+  Eigen::Isometry3d childPose;  ///< the child link's frame in the model at position 0
+};
+
 struct Pending {
   const urdf::Link* link;
   size_t group;
@@ -64,6 +80,7 @@ class Projector {
     std::string why = walk();
     if (why.empty()) why = makeBodies();
     if (why.empty()) why = makeJoints();
+    if (why.empty()) why = makeFolded();
     return why;
   }
 
@@ -165,6 +182,13 @@ class Projector {
           break;
         case urdf::Joint::REVOLUTE:
         case urdf::Joint::CONTINUOUS:
+          if (folds(*joint, childPose)) {
+            folds_.push_back({joint.get(), at.group, child, childPose});
+            foldedLinks_.push_back(child->name);
+            stack->push_back({child, at.group, childPose});
+            break;
+          }
+          [[fallthrough]];
         case urdf::Joint::PRISMATIC: {
           const size_t childGroup = startGroup(child, joint.get(), BodyType::Dynamic);
           groups_[at.group].movingChildren.push_back(joint.get());
@@ -179,6 +203,64 @@ class Projector {
         default:
           return jointName(*joint) + ": unknown joint type";
       }
+    }
+    return "";
+  }
+
+  // Whether a top-down world folds the joint: its axis, in the model, lies off the vertical.
+  bool folds(const urdf::Joint& joint, const Eigen::Isometry3d& childPose) const {
+    if (plane_.name != "xy" || placement_.strict) return false;
+    const Eigen::Vector3d localAxis(joint.axis.x, joint.axis.y, joint.axis.z);
+    if (!localAxis.allFinite() || localAxis.norm() < 1e-9) return false;  // makeJoints says so
+    return !isNormal(plane_, childPose.linear() * localAxis.normalized());
+  }
+
+  bool isFolded(const std::string& link) const {
+    return std::find(foldedLinks_.begin(), foldedLinks_.end(), link) != foldedLinks_.end();
+  }
+
+  // The radius of a cylinder of `link` whose axis is the joint's (a wheel), or 0.
+  static double wheelRadius(const urdf::Link& link, const Eigen::Vector3d& jointAxis) {
+    for (const urdf::CollisionSharedPtr& collision : link.collision_array) {
+      if (!collision || !collision->geometry ||
+          collision->geometry->type != urdf::Geometry::CYLINDER) {
+        continue;
+      }
+      Eigen::Isometry3d origin;
+      if (!toIsometry(collision->origin, &origin)) continue;
+      const double radius = static_cast<const urdf::Cylinder&>(*collision->geometry).radius;
+      if (std::abs(origin.linear().col(2).dot(jointAxis)) > 1.0 - 1e-6 && radius > 0.0) {
+        return radius;
+      }
+    }
+    return 0.0;
+  }
+
+  std::string makeFolded() {
+    for (const Fold& fold : folds_) {
+      const Group& group = groups_[fold.group];
+      const urdf::Joint& joint = *fold.joint;
+      if (group.skipped) continue;  // no body to fold into: the link went with it
+      std::string why = prefixed(joint.name, "joint");
+      if (!why.empty()) return why;
+      UrdfFoldedJoint folded;
+      folded.name = placement_.modelName + "/" + joint.name;
+      folded.body = placement_.modelName + "/" + group.top->name;
+      // A link whose name cannot be a frame is not on tf (addFrame warns of such links too).
+      if (scene_detail::checkName(fold.child->name).empty()) {
+        folded.link = placement_.modelName + "/" + fold.child->name;
+      }
+      folded.pose = group.pose.inverse() * fold.childPose;
+      folded.axis = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z).normalized();
+      folded.center = project(plane_, folded.pose.translation());
+      const Vec2 planeAxis = project(plane_, folded.pose.linear() * folded.axis);
+      folded.planeAxis = planeAxis.norm() > 1e-9 ? Vec2(planeAxis.normalized()) : Vec2::UnitY();
+      folded.wheelRadius = wheelRadius(*fold.child, folded.axis);
+      out_->folded.push_back(folded);
+      out_->warnings.push_back(
+          jointName(joint) + ": folded into body " + quotedName(folded.body) + " (its axis " +
+          describe(fold.childPose.linear() * folded.axis) +
+          " lies off the vertical: a wheel seen from above); strict refuses such models");
     }
     return "";
   }
@@ -215,7 +297,9 @@ class Projector {
   void addGroupFrames(const Group& group) {
     if (!group.skipped) {
       const std::string body = placement_.modelName + "/" + group.top->name;
-      for (const auto& [link, inBody] : group.mergedFrames) addFrame(link, body, inBody);
+      for (const auto& [link, inBody] : group.mergedFrames) {
+        if (!isFolded(link)) addFrame(link, body, inBody);  // a folded one turns: on /tf
+      }
     } else if (group.type == BodyType::Static) {
       const Eigen::Isometry3d top = placementPose() * group.pose;
       addFrame(group.top->name, "", top);
@@ -353,6 +437,8 @@ class Projector {
   UrdfModel* out_;
   std::vector<Group> groups_;
   std::vector<MovingJoint> moving_;
+  std::vector<Fold> folds_;
+  std::vector<std::string> foldedLinks_;
 };
 
 }  // namespace
