@@ -195,6 +195,7 @@ struct UrdfRequest {
 };
 struct UrdfSpawned {
   std::vector<std::string> bodies, joints, warnings;
+  std::vector<std::string> devices;  ///< from its gazebo plugins and sensors
 };
 
 /// What ~spawn_model asks for and answers (sim_world_models.cpp): a model file (absolute or

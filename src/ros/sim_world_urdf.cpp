@@ -23,9 +23,14 @@ bool SimWorld::spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* 
   placement.strict = request.strict;
   UrdfModel model;
   if (!parseUrdf(request.xml, placement, &model, error)) return false;
+  // Its gazebo plugins' devices are checked against the devices here before anything is added.
+  *error = devices_->check(model.scene.devices, deviceContext());
+  if (!error->empty()) return false;
   std::vector<BodyId> bodies;
   std::vector<JointId> joints;
   if (!impulse2d::addScene(model.scene, *world_, error, &bodies, &joints)) return false;
+  addDevices(model.scene.devices, error);  // checked above: cannot fail
+  for (const DeviceDef& device : model.scene.devices) out->devices.push_back(device.name);
   for (const BodyId id : bodies) out->bodies.push_back(world_->body(id).name);
   for (const JointId id : joints) out->joints.push_back(world_->jointDef(id).name);
   out->warnings = model.warnings;

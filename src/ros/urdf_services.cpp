@@ -84,10 +84,12 @@ bool WorldNode::spawnUrdf(SpawnUrdf::Request& req, SpawnUrdf::Response& res) {
     Lock lock(*this);
     sim_.spawnUrdf(request, false, &spawned, &error);
   }
+  syncDevices();  // its gazebo plugins' devices get their topics before the answer
   res.success = error.empty();
   res.message = error.empty() ? withWarnings(notes, spawned.warnings) : error;
   res.bodies = spawned.bodies;
   res.joints = spawned.joints;
+  res.devices = spawned.devices;
   return true;
 }
 

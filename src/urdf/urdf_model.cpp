@@ -11,6 +11,7 @@
 //         axis into the page       [=]         [=]  rectangle 2r x length of the base body
 #include <impulse2d/urdf.hpp>
 
+#include "gazebo_devices.hpp"
 #include "link_geometry.hpp"
 #include "plane_projection.hpp"
 #include "urdf_text.hpp"
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <utility>
 
 namespace impulse2d {
@@ -82,6 +84,15 @@ class Projector {
     if (why.empty()) why = makeJoints();
     if (why.empty()) why = makeFolded();
     return why;
+  }
+
+  // Where a link went (gazebo_devices.hpp): false for a link without a body.
+  bool locate(const std::string& link, LinkPlace* out) const {
+    const auto it = linkPlaces_.find(link);
+    if (it == linkPlaces_.end() || groups_[it->second.first].skipped) return false;
+    out->body = placement_.modelName + "/" + groups_[it->second.first].top->name;
+    out->inBody = it->second.second;
+    return true;
   }
 
  private:
@@ -162,6 +173,7 @@ class Projector {
     const Eigen::Isometry3d inBody =
         at.link == group.top ? Eigen::Isometry3d::Identity() : group.pose.inverse() * at.pose;
     if (at.link != group.top) group.mergedFrames.emplace_back(link.name, inBody);
+    linkPlaces_.emplace(link.name, std::make_pair(at.group, inBody));
     std::string why = addCollisionShapes(plane_, link, inBody, &group.shapes, &out_->warnings);
     if (why.empty() && group.type == BodyType::Dynamic) {
       why = addInertial(plane_, link, inBody, &group.mass);
@@ -439,6 +451,7 @@ class Projector {
   std::vector<MovingJoint> moving_;
   std::vector<Fold> folds_;
   std::vector<std::string> foldedLinks_;
+  std::map<std::string, std::pair<size_t, Eigen::Isometry3d>> linkPlaces_;  // group, in its body
 };
 
 }  // namespace
@@ -462,7 +475,24 @@ bool parseUrdf(const std::string& urdfXml, const UrdfPlacement& placement, UrdfM
     const ModelReleaser releaser(model);
     if (model) {
       out->scene.plane = placement.plane;
-      why = Projector(*model, plane, placement, out).run();
+      Projector projector(*model, plane, placement, out);
+      why = projector.run();
+      if (why.empty()) {
+        why = gazeboDevices(
+            urdfXml, plane, placement.modelName,
+            [&](const std::string& link, LinkPlace* place) {
+              return projector.locate(link, place);
+            },
+            &out->scene.devices, &out->warnings);
+      }
+      // A sensor's frame named after its link is the sensor's, at the sensor's pose: the link's
+      // own frame leaves tf_static, which would otherwise have two places for it.
+      for (const DeviceDef& device : out->scene.devices) {
+        out->frames.erase(
+            std::remove_if(out->frames.begin(), out->frames.end(),
+                           [&](const UrdfFrame& f) { return f.name == device.frame; }),
+            out->frames.end());
+      }
       if (why.empty() && out->scene.bodies.empty()) {
         why = "the model has no link with collision geometry (meshes are skipped)";
       }

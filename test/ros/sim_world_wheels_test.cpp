@@ -13,11 +13,14 @@ namespace impulse2d {
 namespace bridge {
 namespace {
 
-std::string teachingRobot() {
+// The teaching robot's URDF; without its <gazebo> elements unless `withPlugins`.
+std::string teachingRobot(bool withPlugins) {
   std::ifstream in(std::string(IMPULSE2D_SOURCE_DIR) + "/test/urdf/teaching_robot.urdf");
   std::stringstream text;
   text << in.rdbuf();
-  return text.str();
+  std::string xml = text.str();
+  if (!withPlugins) xml = xml.substr(0, xml.find("<gazebo>")) + "</robot>\n";
+  return xml;
 }
 
 double positionOf(const SimWorld& sim, const std::string& joint) {
@@ -28,14 +31,14 @@ double positionOf(const SimWorld& sim, const std::string& joint) {
   return NAN;
 }
 
-TEST(SimWorldWheels, FoldedWheelsRollWithTheBase) {
+TEST(SimWorldWheels, FoldedWheelsRollWithTheBaseWithoutADrive) {
   SimWorld sim;
   std::string error;
   ASSERT_TRUE(sim.loadStartScene("world: {plane: xy, gravity: [0, 0], time_step: 0.01}\n", &error))
       << error;
   UrdfRequest robot;
   robot.modelName = "tb";
-  robot.xml = teachingRobot();
+  robot.xml = teachingRobot(false);
   UrdfSpawned spawned;
   ASSERT_TRUE(sim.spawnUrdf(robot, false, &spawned, &error)) << error;
   EXPECT_EQ(spawned.bodies, std::vector<std::string>{"tb/base_footprint"});
@@ -72,6 +75,38 @@ TEST(SimWorldWheels, FoldedWheelsRollWithTheBase) {
   robot.strict = true;
   EXPECT_FALSE(sim.spawnUrdf(robot, false, &spawned, &error));
   EXPECT_NE(error.find("out of the xy plane"), std::string::npos) << error;
+}
+
+TEST(SimWorldWheels, TheGazeboDiffDriveDrivesTheRobotAndTurnsItsWheels) {
+  SimWorld sim;
+  std::string error;
+  ASSERT_TRUE(sim.loadStartScene("world: {plane: xy, gravity: [0, 0], time_step: 0.01}\n", &error))
+      << error;
+  UrdfRequest robot;
+  robot.modelName = "tb";
+  robot.xml = teachingRobot(true);
+  UrdfSpawned spawned;
+  ASSERT_TRUE(sim.spawnUrdf(robot, false, &spawned, &error)) << error;
+  EXPECT_EQ(spawned.devices,
+            (std::vector<std::string>{"tb/diff_drive_controller", "tb/lds_lfcd_sensor"}));
+  // 1 s at 0.2 m/s, reached at wheelAcceleration 1 m/s^2: 0.181 m, and the wheels (r 0.033 m)
+  // turn with the drive's wheel speeds.
+  for (int i = 0; i < 100; ++i) {
+    if (i % 10 == 0) {  // cmd_vel at 10 Hz, within the drive's 0.5 s timeout
+      ASSERT_TRUE(sim.commandDrive("tb/diff_drive_controller", 0.2, 0.0, 0.0, &error)) << error;
+    }
+    sim.step();
+  }
+  BodySnapshot at;
+  ASSERT_TRUE(sim.getBodyState("tb/base_footprint", &at, &error));
+  EXPECT_NEAR(at.position.x(), 0.181, 0.005);
+  EXPECT_NEAR(positionOf(sim, "tb/wheel_left_joint"), 0.181 / 0.033, 1e-6);
+  EXPECT_NEAR(positionOf(sim, "tb/wheel_right_joint"), 0.181 / 0.033, 1e-6);
+  // A second robot from the same URDF would take the same root topics: refused, nothing added.
+  robot.modelName = "tb2";
+  EXPECT_FALSE(sim.spawnUrdf(robot, false, &spawned, &error));
+  EXPECT_NE(error.find("'/cmd_vel' is already used"), std::string::npos) << error;
+  EXPECT_FALSE(sim.getBodyState("tb2/base_footprint", &at, &error));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Real robots' URDFs top-down (issue 25): in plane xy a joint about an axis in the floor (a
 // wheel's) is folded into its parent's body, the wheel's lying cylinder becoming the rectangle
 // seen from above and its mass the body's; strict keeps today's refusal, and so does the xz plane.
+// The robot's gazebo_ros plugins and sensors become its devices.
 #include <impulse2d/urdf.hpp>
 #include <impulse2d/world.hpp>
 
@@ -83,6 +84,112 @@ TEST(UrdfFolding, ATeachingRobotsWheelsFoldIntoItsBaseSeenFromAbove) {
   world.settings().gravity = Vec2::Zero();
   ASSERT_TRUE(addScene(model.scene, world, &error)) << error;
   EXPECT_EQ(world.bodyCount(), 1u);
+}
+
+const DeviceDef* deviceNamed(const UrdfModel& model, const std::string& name) {
+  for (const DeviceDef& d : model.scene.devices) {
+    if (d.name == name) return &d;
+  }
+  return nullptr;
+}
+
+TEST(UrdfGazebo, TheRobotsGazeboPluginsBecomeItsDevices) {
+  UrdfModel model;
+  std::string error;
+  ASSERT_TRUE(parse(fixture("teaching_robot.urdf"), "xy", false, &model, &error)) << error;
+  ASSERT_EQ(model.scene.devices.size(), 2u);
+  // libgazebo_ros_diff_drive.so on robotBaseFrame base_footprint, its topics at the root (no
+  // robotNamespace), as gazebo_ros publishes them.
+  const DeviceDef* drive = deviceNamed(model, "tb/diff_drive_controller");
+  ASSERT_NE(drive, nullptr);
+  EXPECT_EQ(drive->type, DeviceType::DiffDrive);
+  EXPECT_EQ(drive->body, "tb/base_footprint");
+  EXPECT_EQ(drive->drive.cmdVelTopic, "/cmd_vel");
+  EXPECT_EQ(drive->drive.odomTopic, "/odom");
+  EXPECT_EQ(drive->drive.odomFrame, "tb/odom");
+  EXPECT_TRUE(drive->drive.publishTf);
+  EXPECT_EQ(drive->drive.maxLinearAccel, 1.0);
+  EXPECT_NEAR(drive->drive.maxForce, 2 * 10.0 / 0.033, 1e-9);  // two wheels' torque at r
+  // The LDS on base_scan: 360 samples over a full turn (the last, repeating the first, left
+  // out), 0.12 to 3.5 m, 5 Hz, 1 cm noise, its frame base_scan on the mast.
+  const DeviceDef* laser = deviceNamed(model, "tb/lds_lfcd_sensor");
+  ASSERT_NE(laser, nullptr);
+  EXPECT_EQ(laser->type, DeviceType::Laser);
+  EXPECT_EQ(laser->body, "tb/base_footprint");
+  EXPECT_EQ(laser->laser.topic, "/scan");
+  EXPECT_EQ(laser->frame, "tb/base_scan");
+  EXPECT_NEAR(laser->laser.offset.x(), -0.032, 1e-12);
+  EXPECT_NEAR(laser->laser.offset.y(), 0.0, 1e-12);
+  EXPECT_NEAR(laser->laser.angleMin, 0.0, 1e-12);
+  EXPECT_NEAR(laser->laser.angleIncrement, 6.28319 / 359.0, 1e-12);
+  EXPECT_EQ(static_cast<int>(std::floor((laser->laser.angleMax - laser->laser.angleMin) /
+                                        laser->laser.angleIncrement)) +
+                1,
+            359);
+  EXPECT_EQ(laser->laser.rangeMin, 0.12);
+  EXPECT_EQ(laser->laser.rangeMax, 3.5);
+  EXPECT_EQ(laser->laser.updateRate, 5.0);
+  EXPECT_EQ(laser->laser.noiseStddev, 0.01);
+  // The laser's frame is the sensor's now: the link's own frame leaves the fixed frames.
+  for (const UrdfFrame& frame : model.frames) EXPECT_NE(frame.name, "tb/base_scan");
+
+  // In the side view the drive has no floor, and the horizontal scanner cannot scan the plane:
+  // both left out with a word.
+  UrdfModel side;
+  std::string xml = fixture("teaching_robot.urdf");
+  // (the side view refuses the rolled wheels; without them the robot loads)
+  for (const char* wheel : {"wheel_left", "wheel_right"}) {
+    const size_t a = xml.find(std::string("<joint name=\"") + wheel + "_joint\"");
+    const size_t b = xml.find("</link>", a) + 7;
+    xml.erase(a, b - a);
+  }
+  ASSERT_TRUE(parse(xml, "xz", false, &side, &error)) << error;
+  EXPECT_TRUE(side.scene.devices.empty());
+  int said = 0;
+  for (const std::string& w : side.warnings) {
+    said += w.find("needs a top-down") != std::string::npos;
+    said += w.find("skipped: it is tilted out of the floor's plane") != std::string::npos;
+  }
+  EXPECT_EQ(said, 2);
+}
+
+TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
+  const std::string base =
+      R"(<robot name="r"><link name="base_footprint"><collision><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>)";
+  struct Case {
+    std::string gazebo;
+    std::string error;
+  };
+  const Case cases[] = {
+      {R"(<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><robotBaseFrame>nowhere</robotBaseFrame></plugin></gazebo>)",
+       "robotBaseFrame 'nowhere' is no link of the model"},
+      {R"(<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><wheelTorque>lots</wheelTorque></plugin></gazebo>)",
+       "wheelTorque"},
+      {R"(<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><commandTopic>bad topic</commandTopic></plugin></gazebo>)",
+       "commandTopic '/bad topic'"},
+      {R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><ray><range><min>2</min><max>1</max></range></ray><plugin name="p" filename="libgazebo_ros_laser.so"/></sensor></gazebo>)",
+       "range min and max"},
+  };
+  for (const Case& c : cases) {
+    UrdfModel model;
+    std::string error;
+    EXPECT_FALSE(parse(base + c.gazebo + "</robot>", "xy", false, &model, &error)) << c.gazebo;
+    EXPECT_NE(error.find(c.error), std::string::npos) << error;
+    EXPECT_TRUE(model.scene.bodies.empty());
+  }
+  // An unknown plugin and a scanner tilted out of the floor are left out with a word each; the
+  // robot loads.
+  UrdfModel model;
+  std::string error;
+  ASSERT_TRUE(parse(
+      base + R"(<gazebo><plugin name="x" filename="libsomething.so"/></gazebo>)" +
+          R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><pose>0 0 0 0 0.7 0</pose><plugin name="p" filename="libgazebo_ros_laser.so"/></sensor></gazebo></robot>)",
+      "xy", false, &model, &error))
+      << error;
+  EXPECT_TRUE(model.scene.devices.empty());
+  ASSERT_EQ(model.warnings.size(), 2u);
+  EXPECT_NE(model.warnings[0].find("plugin 'x' (libsomething.so): skipped"), std::string::npos);
+  EXPECT_NE(model.warnings[1].find("sensor 's': skipped: it is tilted"), std::string::npos);
 }
 
 TEST(UrdfFolding, StrictAndTheSideViewRefuseAsBefore) {
