@@ -56,16 +56,21 @@ bool SimWorld::spawnModel(const ModelRequest& request, ModelSpawned* out, std::s
     ScenePaths paths;
     paths.findPackage = findPackage_;
     file = resolveSceneFile(request.file, paths, error);
-    if (file.empty()) return *error = "file: " + *error, false;
-    if (!loadModelFile(file, &model, error)) return *error = "file: " + *error, false;
+    if (file.empty() || !loadModelFile(file, &model, error)) {
+      *error = "file: " + *error;
+      return false;
+    }
   } else if (!parseModel(request.yaml, &model, error)) {
     *error = "model_yaml: " + *error;
     return false;
   }
   Scene placed;
   if (!placeModel(model, request.where, &placed, error, file)) return false;
-  std::string taken = checkModelNames(placed.models);
-  if (!taken.empty()) return *error = "model_name: " + taken, false;
+  const std::string taken = checkModelNames(placed.models);
+  if (!taken.empty()) {
+    *error = "model_name: " + taken;
+    return false;
+  }
   // The devices are checked against the devices here before anything is added.
   *error = devices_->check(placed.devices, deviceContext());
   if (!error->empty()) return false;

@@ -88,7 +88,10 @@ bool placeModel(const Scene& model, const ModelPlacement& request, Scene* scene,
                 const std::string& file) {
   using namespace scene_detail;
   std::string why = checkName(request.name);
-  if (!why.empty()) return *error = "name: " + why, false;
+  if (!why.empty()) {
+    *error = "name: " + why;
+    return false;
+  }
   ModelPlacement where = request;
   if (!where.ns.empty() && where.ns[0] == '/') where.ns.erase(0, 1);
   if (where.ns.empty()) where.ns = where.name;
@@ -105,8 +108,10 @@ bool placeModel(const Scene& model, const ModelPlacement& request, Scene* scene,
     return false;
   }
   for (const SceneModel& other : scene->models) {
-    if (other.name == where.name)
-      return *error = "name: a model named " + quoted(where.name) + " already exists", false;
+    if (other.name == where.name) {
+      *error = "name: a model named " + quoted(where.name) + " already exists";
+      return false;
+    }
   }
 
   std::set<std::string> modelBodies;

@@ -307,7 +307,16 @@ class Reader {
       d.bumper.topic = topic(*plugin, "bumperTopicName", "bumper", &error);
     }
     if (!error.empty()) return where + error;
-    if (!f.empty() && !bumper) d.frame = f;
+    if (!f.empty() && !bumper) {
+      if (f == place.body) {  // the body's own frame cannot hang below the body
+        d.frame = place.body + "/" + d.name.substr(model_.size() + 1);
+        warnings_->push_back(where +
+                             "frameName names its body's own frame: the readings' frame is " +
+                             quotedName(d.frame));
+      } else {
+        d.frame = f;
+      }
+    }
     devices_->push_back(d);
     return "";
   }

@@ -188,6 +188,15 @@ TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
       << error;
   EXPECT_TRUE(model.scene.devices.empty());
   ASSERT_EQ(model.warnings.size(), 2u);
+  // A scanner whose frameName is its body's own frame reads in a frame of its own.
+  UrdfModel own;
+  ASSERT_TRUE(parse(
+      base +
+          R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><plugin name="p" filename="libgazebo_ros_laser.so"><frameName>base_footprint</frameName></plugin></sensor></gazebo></robot>)",
+      "xy", false, &own, &error))
+      << error;
+  ASSERT_EQ(own.scene.devices.size(), 1u);
+  EXPECT_EQ(deviceFrameOf(own.scene.devices[0]), "tb/base_footprint/s");
   EXPECT_NE(model.warnings[0].find("plugin 'x' (libsomething.so): skipped"), std::string::npos);
   EXPECT_NE(model.warnings[1].find("sensor 's': skipped: it is tilted"), std::string::npos);
 }
