@@ -3,11 +3,14 @@
 # rostests. Included from CMakeLists.txt after the unit tests and ROS targets are declared;
 # test/unit/test_urdf.cpp is globbed into impulse2d_unit_tests, which links the loader here.
 find_package(urdfdom REQUIRED)
+# Collision meshes (STL, COLLADA, OBJ) for their footprints.
+find_package(assimp REQUIRED)
 
 file(GLOB IMPULSE2D_URDF_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/urdf/*.cpp)
 add_library(impulse2d_urdf ${IMPULSE2D_URDF_SOURCES})
 target_include_directories(impulse2d_urdf PRIVATE ${PROJECT_SOURCE_DIR}/src/scene)
-target_link_libraries(impulse2d_urdf PUBLIC impulse2d_scene PRIVATE urdfdom::urdfdom_model)
+target_link_libraries(impulse2d_urdf PUBLIC impulse2d_scene PRIVATE urdfdom::urdfdom_model
+  assimp::assimp)
 set_target_properties(impulse2d_urdf PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 if(TARGET impulse2d_unit_tests)

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct UrdfPlacement {
   /// Top-down worlds (xy): false folds a link that turns about an axis in the floor's plane (a
   /// wheel) into its parent body; true refuses such a model, as the xz plane always does.
   bool strict = false;
+  /// The folder of a ROS package, for collision meshes named package://PACKAGE/PATH (read with
+  /// assimp, their footprints become polygons); "" with `error` set when there is none. Unset,
+  /// meshes are skipped with a warning. Meshes named otherwise (file://, relative) are never read.
+  std::function<std::string(const std::string& package, std::string* error)> findPackage;
 };
 
 /// A revolute or prismatic URDF joint as created in the world, for joint_states and commands.

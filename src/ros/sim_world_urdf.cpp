@@ -21,6 +21,7 @@ bool SimWorld::spawnUrdf(const UrdfRequest& request, bool atStart, UrdfSpawned* 
   placement.angle = request.angle;
   placement.plane = plane_;
   placement.strict = request.strict;
+  placement.findPackage = findPackage_;  // package:// collision meshes
   UrdfModel model;
   if (!parseUrdf(request.xml, placement, &model, error)) return false;
   // Its gazebo plugins' devices are checked against the devices here before anything is added.

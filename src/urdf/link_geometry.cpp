@@ -3,6 +3,8 @@
 // side-view rectangle. Anything tilted in between cannot be drawn in 2D and is refused.
 #include "link_geometry.hpp"
 
+#include "mesh_footprint.hpp"
+
 #include <cmath>
 
 namespace impulse2d {
@@ -93,9 +95,10 @@ bool toIsometry(const urdf::Pose& pose, Eigen::Isometry3d* out) {
   return true;
 }
 
-std::string addCollisionShapes(const PlaneAxes& plane, const urdf::Link& link,
-                               const Eigen::Isometry3d& linkInBody, std::vector<ShapeDef>* shapes,
-                               std::vector<std::string>* warnings) {
+std::string addCollisionShapes(
+    const PlaneAxes& plane, const urdf::Link& link, const Eigen::Isometry3d& linkInBody,
+    std::vector<ShapeDef>* shapes, std::vector<std::string>* warnings,
+    const std::function<std::string(const std::string&, std::string*)>& findPackage) {
   for (size_t i = 0; i < link.collision_array.size(); ++i) {
     const urdf::CollisionSharedPtr& collision = link.collision_array[i];
     if (!collision || !collision->geometry) continue;
@@ -125,11 +128,39 @@ std::string addCollisionShapes(const PlaneAxes& plane, const urdf::Link& link,
         why =
             cylinderShape(plane, static_cast<const urdf::Cylinder&>(geometry), shapeInBody, &shape);
         break;
-      case urdf::Geometry::MESH:
-        // Never read: a robot description must not make the simulator open files.
-        warnings->push_back(where + "mesh skipped (meshes are not loaded; use a box, cylinder " +
-                            "or sphere for 2D collision)");
+      case urdf::Geometry::MESH: {
+        const urdf::Mesh& mesh = static_cast<const urdf::Mesh&>(geometry);
+        const std::string scheme = "package://";
+        if (!findPackage || mesh.filename.compare(0, scheme.size(), scheme) != 0) {
+          // Only package:// names are read: a description must not open arbitrary files.
+          warnings->push_back(where + "mesh " + quotedName(mesh.filename) + " skipped (" +
+                              (findPackage ? "only package:// meshes are read"
+                                           : "no package finder to read meshes with") +
+                              "; or use a box, cylinder or sphere for 2D collision)");
+          continue;
+        }
+        const std::string rest = mesh.filename.substr(scheme.size());
+        const size_t slash = rest.find('/');
+        std::string folder;
+        if (slash != std::string::npos && slash > 0)
+          folder = findPackage(rest.substr(0, slash), &why);
+        if (folder.empty()) {
+          return where + "mesh " + quotedName(mesh.filename) + ": " +
+                 (why.empty() ? "must be package://PACKAGE/PATH" : why);
+        }
+        std::vector<std::vector<Vec2>> polygons;
+        why = meshFootprint(folder + rest.substr(slash),
+                            Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z), shapeInBody,
+                            plane, &polygons);
+        if (!why.empty()) return where + "mesh " + quotedName(mesh.filename) + ": " + why;
+        for (const std::vector<Vec2>& polygon : polygons) {
+          ShapeDef piece;
+          piece.kind = ShapeKind::Polygon;
+          piece.vertices = polygon;
+          shapes->push_back(piece);
+        }
         continue;
+      }
       default:
         why = "unknown geometry type";
         break;

@@ -8,6 +8,7 @@
 #include <urdf_model/link.h>
 #include <urdf_model/pose.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,12 @@ struct MassSum {
 
 /// Appends the link's collision elements as shapes; `linkInBody` places the link frame in the
 /// body frame. Meshes are skipped with a warning. Returns "" or the reason naming the link.
-std::string addCollisionShapes(const PlaneAxes& plane, const urdf::Link& link,
-                               const Eigen::Isometry3d& linkInBody, std::vector<ShapeDef>* shapes,
-                               std::vector<std::string>* warnings);
+/// `findPackage` resolves package:// mesh names (UrdfPlacement::findPackage); without it meshes
+/// are skipped with a warning.
+std::string addCollisionShapes(
+    const PlaneAxes& plane, const urdf::Link& link, const Eigen::Isometry3d& linkInBody,
+    std::vector<ShapeDef>* shapes, std::vector<std::string>* warnings,
+    const std::function<std::string(const std::string&, std::string*)>& findPackage = nullptr);
 
 /// Adds the link's <inertial>, if any, to `sum`. Returns "" or the reason naming the link.
 std::string addInertial(const PlaneAxes& plane, const urdf::Link& link,

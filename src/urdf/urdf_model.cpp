@@ -174,7 +174,8 @@ class Projector {
         at.link == group.top ? Eigen::Isometry3d::Identity() : group.pose.inverse() * at.pose;
     if (at.link != group.top) group.mergedFrames.emplace_back(link.name, inBody);
     linkPlaces_.emplace(link.name, std::make_pair(at.group, inBody));
-    std::string why = addCollisionShapes(plane_, link, inBody, &group.shapes, &out_->warnings);
+    std::string why = addCollisionShapes(plane_, link, inBody, &group.shapes, &out_->warnings,
+                                         placement_.findPackage);
     if (why.empty() && group.type == BodyType::Dynamic) {
       why = addInertial(plane_, link, inBody, &group.mass);
     }
