@@ -167,15 +167,20 @@ class Reader {
       if (!odomFrame.empty()) drive.odomFrame = odomFrame;
       const std::string publishTf = trimmed(text(plugin, "publishOdomTF", "true"));
       drive.publishTf = !(publishTf == "false" || publishTf == "0");
-      double accel = 0.0, torque = 0.0, diameter = 0.0;
+      double accel = 0.0, torque = 0.0, diameter = 0.0, separation = 0.0;
       if (!number(plugin, "wheelAcceleration", 0.0, &accel) ||
           !number(plugin, "wheelTorque", 0.0, &torque) ||
-          !number(plugin, "wheelDiameter", 0.0, &diameter)) {
-        return where + "wheelAcceleration, wheelTorque and wheelDiameter must be numbers";
+          !number(plugin, "wheelDiameter", 0.0, &diameter) ||
+          !number(plugin, "wheelSeparation", 0.0, &separation)) {
+        return where +
+               "wheelAcceleration, wheelTorque, wheelDiameter and wheelSeparation must be numbers";
       }
       if (accel > 0.0) drive.maxLinearAccel = accel;  // m/s^2 at the wheels' rim, as gazebo's
       if (torque > 0.0 && diameter > 0.0) {
-        drive.maxForce = std::min(kMaxForce, 2.0 * torque / (0.5 * diameter));
+        // Two wheels, each pushing torque / r: together forward, or in turn at half the track.
+        const double push = torque / (0.5 * diameter);
+        drive.maxForce = std::min(kMaxForce, 2.0 * push);
+        if (separation > 0.0) drive.maxTorque = std::min(kMaxForce, push * separation);
       }
     }
     if (!error.empty()) return where + error;

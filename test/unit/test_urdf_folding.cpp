@@ -109,7 +109,8 @@ TEST(UrdfGazebo, TheRobotsGazeboPluginsBecomeItsDevices) {
   EXPECT_EQ(drive->drive.odomFrame, "tb/odom");
   EXPECT_TRUE(drive->drive.publishTf);
   EXPECT_EQ(drive->drive.maxLinearAccel, 1.0);
-  EXPECT_NEAR(drive->drive.maxForce, 2 * 10.0 / 0.033, 1e-9);  // two wheels' torque at r
+  EXPECT_NEAR(drive->drive.maxForce, 2 * 10.0 / 0.033, 1e-9);       // two wheels' torque at r
+  EXPECT_NEAR(drive->drive.maxTorque, 10.0 / 0.033 * 0.160, 1e-9);  // in turn, at half the track
   // The LDS on base_scan: 360 samples over a full turn (the last, repeating the first, left
   // out), 0.12 to 3.5 m, 5 Hz, 1 cm noise, its frame base_scan on the mast.
   const DeviceDef* laser = deviceNamed(model, "tb/lds_lfcd_sensor");
