@@ -146,8 +146,9 @@ class Reader {
       d.imu.topic = topic(plugin, "topicName", "imu", &error);
       double rate = 0.0, noise = 0.0;
       if (!number(plugin, "updateRate", d.imu.updateRate, &rate) ||
-          !number(plugin, "gaussianNoise", 0.0, &noise)) {
-        return where + "updateRate and gaussianNoise must be numbers";
+          !number(plugin, "gaussianNoise", 0.0, &noise) || rate > 1e6 || noise < 0.0 ||
+          noise > 1e6) {
+        return where + "updateRate (at most 1e6 Hz) and gaussianNoise (0 to 1e6) must be numbers";
       }
       if (rate > 0.0) d.imu.updateRate = rate;
       d.imu.angularVelocityNoise = d.imu.linearAccelerationNoise = Eigen::Vector3d::Constant(noise);
@@ -175,6 +176,7 @@ class Reader {
         return where +
                "wheelAcceleration, wheelTorque, wheelDiameter and wheelSeparation must be numbers";
       }
+      if (accel > 1e6) return where + "wheelAcceleration must be at most 1e6 m/s^2";
       if (accel > 0.0) drive.maxLinearAccel = accel;  // m/s^2 at the wheels' rim, as gazebo's
       if (torque > 0.0 && diameter > 0.0) {
         // Two wheels, each pushing torque / r: together forward, or in turn at half the track.
@@ -289,8 +291,12 @@ class Reader {
         if (l.angleMax - l.angleMin > 2.0 * kPi - 1e-6) l.angleMax -= 0.5 * l.angleIncrement;
       }
       if (rate > 0.0) l.updateRate = rate;
-      if (!(l.rangeMin >= 0.0 && l.rangeMax > l.rangeMin && l.noiseStddev >= 0.0)) {
-        return where + "range min and max and noise stddev are not a scanner's";
+      // The scene format's bounds (scene_format.md, devices[]).
+      if (!(l.rangeMin >= 0.0 && l.rangeMax > l.rangeMin && l.rangeMax <= kMaxCoordinate &&
+            l.noiseStddev >= 0.0 && l.noiseStddev <= kMaxCoordinate && l.updateRate <= 1e6)) {
+        return where +
+               "range min and max, noise stddev or update_rate are not a scanner's (0 <= min < "
+               "max <= 1e6 m, stddev 0 to 1e6 m, at most 1e6 Hz)";
       }
     } else if (imu) {
       d.type = DeviceType::Imu;
@@ -302,8 +308,9 @@ class Reader {
       }
       d.imu.topic = topic(*plugin, "topicName", "imu", &error);
       double noise = 0.0;
-      if (!number(*plugin, "gaussianNoise", 0.0, &noise) || noise < 0.0) {
-        return where + "gaussianNoise must be a number >= 0";
+      if (!number(*plugin, "gaussianNoise", 0.0, &noise) || noise < 0.0 || noise > 1e6 ||
+          rate > 1e6) {
+        return where + "gaussianNoise (0 to 1e6) and update_rate (at most 1e6 Hz) must be numbers";
       }
       d.imu.angularVelocityNoise = d.imu.linearAccelerationNoise = Eigen::Vector3d::Constant(noise);
       if (rate > 0.0) d.imu.updateRate = rate;

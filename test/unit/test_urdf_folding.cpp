@@ -170,6 +170,10 @@ TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
        "commandTopic '/bad topic'"},
       {R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><ray><range><min>2</min><max>1</max></range></ray><plugin name="p" filename="libgazebo_ros_laser.so"/></sensor></gazebo>)",
        "range min and max"},
+      {R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><ray><range><min>0</min><max>1e9</max></range></ray><plugin name="p" filename="libgazebo_ros_laser.so"/></sensor></gazebo>)",
+       "at most 1e6 Hz)"},
+      {R"(<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><wheelAcceleration>1e9</wheelAcceleration></plugin></gazebo>)",
+       "wheelAcceleration must be at most 1e6"},
   };
   for (const Case& c : cases) {
     UrdfModel model;
