@@ -31,16 +31,22 @@ double positionOf(const SimWorld& sim, const std::string& joint) {
   return NAN;
 }
 
-TEST(SimWorldWheels, FoldedWheelsRollWithTheBaseWithoutADrive) {
-  SimWorld sim;
+// A top-down world without gravity holding the teaching robot as model "tb".
+void spawnTeachingRobot(SimWorld& sim, bool withPlugins, UrdfRequest* robot, UrdfSpawned* spawned) {
   std::string error;
   ASSERT_TRUE(sim.loadStartScene("world: {plane: xy, gravity: [0, 0], time_step: 0.01}\n", &error))
       << error;
+  robot->modelName = "tb";
+  robot->xml = teachingRobot(withPlugins);
+  ASSERT_TRUE(sim.spawnUrdf(*robot, false, spawned, &error)) << error;
+}
+
+TEST(SimWorldWheels, FoldedWheelsRollWithTheBaseWithoutADrive) {
+  SimWorld sim;
+  std::string error;
   UrdfRequest robot;
-  robot.modelName = "tb";
-  robot.xml = teachingRobot(false);
   UrdfSpawned spawned;
-  ASSERT_TRUE(sim.spawnUrdf(robot, false, &spawned, &error)) << error;
+  ASSERT_NO_FATAL_FAILURE(spawnTeachingRobot(sim, false, &robot, &spawned));
   EXPECT_EQ(spawned.bodies, std::vector<std::string>{"tb/base_footprint"});
   EXPECT_EQ(positionOf(sim, "tb/wheel_left_joint"), 0.0);
 
@@ -80,13 +86,9 @@ TEST(SimWorldWheels, FoldedWheelsRollWithTheBaseWithoutADrive) {
 TEST(SimWorldWheels, TheGazeboDiffDriveDrivesTheRobotAndTurnsItsWheels) {
   SimWorld sim;
   std::string error;
-  ASSERT_TRUE(sim.loadStartScene("world: {plane: xy, gravity: [0, 0], time_step: 0.01}\n", &error))
-      << error;
   UrdfRequest robot;
-  robot.modelName = "tb";
-  robot.xml = teachingRobot(true);
   UrdfSpawned spawned;
-  ASSERT_TRUE(sim.spawnUrdf(robot, false, &spawned, &error)) << error;
+  ASSERT_NO_FATAL_FAILURE(spawnTeachingRobot(sim, true, &robot, &spawned));
   EXPECT_EQ(spawned.devices,
             (std::vector<std::string>{"tb/diff_drive_controller", "tb/lds_lfcd_sensor"}));
   // 1 s at 0.2 m/s, reached at wheelAcceleration 1 m/s^2: 0.181 m, and the wheels (r 0.033 m)
