@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "urdf_fixture.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -19,13 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 // URDF files write pi/2 as 1.5707963; the shapes' angles inherit that rounding.
 constexpr double kRpyTol = 1e-6;
 
-std::string fixture(const std::string& name) {
-  std::ifstream in(std::string(IMPULSE2D_SOURCE_DIR) + "/test/urdf/" + name);
-  EXPECT_TRUE(in.good()) << name;
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string fixture(const std::string& name) { return test::urdfFixture(name); }
 
 UrdfModel load(const std::string& xml, const std::string& model = "m",
                const std::string& plane = "xz") {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "urdf_fixture.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -15,13 +17,7 @@
 namespace impulse2d {
 namespace {
 
-std::string fixture(const std::string& name) {
-  std::ifstream in(std::string(IMPULSE2D_SOURCE_DIR) + "/test/urdf/" + name);
-  EXPECT_TRUE(in.good()) << name;
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string fixture(const std::string& name) { return test::urdfFixture(name); }
 
 bool parse(const std::string& xml, const std::string& plane, bool strict, UrdfModel* out,
            std::string* error) {
