@@ -1,5 +1,7 @@
-// A rigid body as the world stores it. Users read it through World::body(); they change it only
-// through World's methods, so the broad phase, islands and contacts stay consistent.
+// A rigid body as users read it through World::body(): its pose, velocities, mass properties,
+// shapes, name, type and whether it is awake. They change it only through World's methods, so the
+// broad phase, islands and contacts stay consistent; that bookkeeping is the world's own
+// (src/core/world_impl.hpp, BodyBookkeeping).
 #pragma once
 
 #include <impulse2d/defs.hpp>
@@ -10,8 +12,6 @@
 
 namespace impulse2d {
 
-// The fields every step reads of every contact's two bodies (the narrow phase) come first, in
-// the first two cache lines; the rest after.
 struct alignas(64) Body {
   BodyType type = BodyType::Dynamic;
   bool awake = true;
@@ -20,7 +20,6 @@ struct alignas(64) Body {
   double angularVelocity = 0.0;        ///< rad/s
 
   std::vector<Shape> shapes;  ///< in the body frame (offsets already applied)
-  std::vector<int> proxies;   ///< broad-phase proxy of each shape
   double maxExtent = 0.0;     ///< m, farthest shape point from the centre of mass
   double minExtent = 0.0;     ///< m, the thinnest shape's inner radius: moving less cannot skip it
 
@@ -39,11 +38,6 @@ struct alignas(64) Body {
   bool bullet = false;
 
   double sleepTime = 0.0;  ///< s the body has been still
-  int islandFlag = 0;      ///< scratch for island building
-  /// Where the body was when the fat boxes of all its shapes were last placed: while it has
-  /// moved less than their margin since, no shape can have left its box.
-  Transform proxyXf;
-  bool lost = false;  ///< reported lost for good (World::takeLostBodies), not back since
 
   /// Velocity of a world point attached to the body.
   Vec2 velocityAt(const Vec2& worldPoint) const {

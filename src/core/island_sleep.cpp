@@ -54,7 +54,7 @@ void WorldImpl::updateSleep(double dt) {
   // Static bodies are never flagged: only dynamic ones join islands.
   for (const int i : movableSlots) {
     Body& body = bodies.items[i];
-    body.islandFlag = 0;
+    bookkeeping[i].islandFlag = 0;
     if (body.type != BodyType::Dynamic || !body.awake) continue;
     const bool still = body.linearVelocity.squaredNorm() <= linTol2 &&
                        body.angularVelocity * body.angularVelocity <= angTol2;
@@ -75,13 +75,13 @@ void WorldImpl::updateSleep(double dt) {
   // something touches it.
   for (const int seed : movableSlots) {
     Body& start = bodies.items[seed];
-    if (start.type != BodyType::Dynamic || !start.awake || start.islandFlag) {
+    if (start.type != BodyType::Dynamic || !start.awake || bookkeeping[seed].islandFlag) {
       continue;
     }
     island.clear();
     islandStack.clear();
     islandStack.push_back(seed);
-    start.islandFlag = 1;
+    bookkeeping[seed].islandFlag = 1;
     double minSleepTime = std::numeric_limits<double>::infinity();
     while (!islandStack.empty()) {
       const int index = islandStack.back();
@@ -96,8 +96,9 @@ void WorldImpl::updateSleep(double dt) {
             (next.linearVelocity.squaredNorm() > 0.0 || next.angularVelocity != 0.0)) {
           minSleepTime = 0.0;  // a moving kinematic body keeps what it touches awake
         }
-        if (next.type != BodyType::Dynamic || next.islandFlag) return;
-        next.islandFlag = 1;
+        int& flag = bookkeeping[other].islandFlag;
+        if (next.type != BodyType::Dynamic || flag) return;
+        flag = 1;
         islandStack.push_back(other);
       };
       const int place = movableIndex[index];

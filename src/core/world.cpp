@@ -43,33 +43,38 @@ void WorldImpl::removeMovable(int slot) {
   for (size_t k = from; k < movableSlots.size(); ++k) movableIndex[movableSlots[k]] = k;
 }
 
-void WorldImpl::createProxies(Body& body) {
-  body.proxies.clear();
-  body.proxyXf = body.xf;
+void WorldImpl::createProxies(int slot) {
+  const Body& body = bodies.items[slot];
+  BodyBookkeeping& book = bookkeeping[slot];
+  book.proxies.clear();
+  book.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
-    const int proxy = tree.createProxy(box, proxyData(body.id.index, static_cast<int>(i)));
-    body.proxies.push_back(proxy);
+    const int proxy = tree.createProxy(box, proxyData(slot, static_cast<int>(i)));
+    book.proxies.push_back(proxy);
     markMoved(proxy);
   }
 }
 
-void WorldImpl::destroyProxies(Body& body) {
-  for (const int proxy : body.proxies) {
+void WorldImpl::destroyProxies(int slot) {
+  std::vector<int>& proxies = bookkeeping[slot].proxies;
+  for (const int proxy : proxies) {
     if (proxy < static_cast<int>(proxyMoved.size()) && proxyMoved[proxy]) {
       proxyMoved[proxy] = 0;
       movedProxies.erase(std::find(movedProxies.begin(), movedProxies.end(), proxy));
     }
     tree.destroyProxy(proxy);
   }
-  body.proxies.clear();
+  proxies.clear();
 }
 
-void WorldImpl::updateProxies(Body& body, bool forced) {
-  if (forced) body.proxyXf = body.xf;
+void WorldImpl::updateProxies(int slot, bool forced) {
+  const Body& body = bodies.items[slot];
+  BodyBookkeeping& book = bookkeeping[slot];
+  if (forced) book.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf);
-    const int proxy = body.proxies[i];
+    const int proxy = book.proxies[i];
     if (!forced && tree.fatAabb(proxy).contains(box)) continue;
     tree.moveProxy(proxy, box.inflated(kAabbMargin));
     markMoved(proxy);
@@ -175,7 +180,10 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   }
 
   const int slot = w.bodies.acquire();
-  if (slot >= static_cast<int>(w.jointsOfBody.size())) w.jointsOfBody.resize(slot + 1);
+  if (slot >= static_cast<int>(w.jointsOfBody.size())) {
+    w.jointsOfBody.resize(slot + 1);
+    w.bookkeeping.resize(slot + 1);
+  }
   Body& body = w.bodies.items[slot];
   body.id = BodyId{slot, w.bodies.generation[slot]};
   body.name = def.name;
@@ -207,7 +215,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
       body.maxExtent = std::max(body.maxExtent, (corner - body.localCenter).norm());
     }
   }
-  w.createProxies(body);
+  w.createProxies(slot);
   w.shapeCount += body.shapes.size();
   if (!def.name.empty()) w.bodyByName[def.name] = slot;
   if (def.type == BodyType::Static) w.staticBodiesChanged();
@@ -226,12 +234,13 @@ bool World::destroyBody(BodyId id) {
   w.destroyContactsOf(id.index);
   Body& body = w.bodies.items[id.index];
   if (body.type == BodyType::Static) w.staticBodiesChanged();
-  w.destroyProxies(body);
+  w.destroyProxies(id.index);
   w.shapeCount -= body.shapes.size();
   if (!body.name.empty()) w.bodyByName.erase(body.name);
   w.bodies.release(id.index);
   w.removeMovable(id.index);
   w.jointsOfBody[id.index].clear();
+  w.bookkeeping[id.index] = BodyBookkeeping();
   return true;
 }
 
@@ -349,7 +358,7 @@ bool World::destroyJoint(JointId id) {
     list.erase(std::remove(list.begin(), list.end(), id.index), list.end());
     w.wakeBody(w.bodies.items[slot]);
     // The pair may collide again: let the broad phase report it anew.
-    for (const int proxy : w.bodies.items[slot].proxies) w.markMoved(proxy);
+    for (const int proxy : w.bookkeeping[slot].proxies) w.markMoved(proxy);
   }
   const std::string& name = w.jointDefs[id.index].name;
   if (!name.empty()) w.jointByName.erase(name);
@@ -424,7 +433,7 @@ bool World::setTransform(BodyId id, const Vec2& position, double angle) {
     body.angle = poses[k].second;
     body.xf = Transform(poses[k].first, Rot(body.angle));
     body.center = body.xf.apply(body.localCenter);
-    w.updateProxies(body, true);
+    w.updateProxies(group[k], true);
     w.wakeBody(body);
     if (body.type == BodyType::Static) w.staticBodiesChanged();
   }

@@ -100,12 +100,12 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   std::vector<int>& candidates = lostCandidates;
   candidates.clear();
   for (const int i : movableSlots) {
-    Body& body = bodies.items[i];
+    const Body& body = bodies.items[i];
     if (body.type != BodyType::Dynamic || !body.awake) continue;
     if (floor.top(body) > floor.deepest + floor.height) {
       candidates.push_back(i);
     } else {
-      body.lost = false;  // back, or never gone
+      bookkeeping[i].lost = false;  // back, or never gone
     }
   }
   if (candidates.empty()) return;
@@ -124,7 +124,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   for (const int slot : candidates) {
     const bool below = floor.top(bodies.items[slot]) > floorLine + floor.height;
     mark[slot] = below ? 1 : 0;
-    if (!below) bodies.items[slot].lost = false;
+    if (!below) bookkeeping[slot].lost = false;
   }
 
   // Bodies joined by joints go together: a joint to anything that is not below (a body above,
@@ -151,10 +151,10 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
       }
     }
     for (const int slot : group) {
-      Body& body = bodies.items[slot];
+      const Body& body = bodies.items[slot];
       const bool lost = !held && momentumDown >= 0.0;
-      const bool reported = body.lost;
-      body.lost = lost;
+      const bool reported = bookkeeping[slot].lost;
+      bookkeeping[slot].lost = lost;
       if (!lost || (reported && !def.removeLostBodies)) continue;
       const double depth = floor.top(body) - floor.deepest;
       std::string reason = "lost for good: it fell " + metres(depth) +

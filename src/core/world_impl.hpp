@@ -89,6 +89,17 @@ inline int64_t proxyData(int slot, int shape) {
 inline int proxySlot(int64_t userData) { return static_cast<int>(userData >> 8); }
 inline int proxyShape(int64_t userData) { return static_cast<int>(userData & 0xff); }
 
+/// What the world keeps of a body besides what users read of it (Body): the broad phase's and the
+/// island pass's bookkeeping.
+struct BodyBookkeeping {
+  std::vector<int> proxies;  // the broad-phase proxy of each shape
+  /// Where the body was when the fat boxes of all its shapes were last placed: while it has
+  /// moved less than their margin since, no shape can have left its box.
+  Transform proxyXf;
+  int islandFlag = 0;  // the island pass's mark
+  bool lost = false;   // reported lost for good (World::takeLostBodies), not back since
+};
+
 struct WorldImpl {
   WorldDef def;
   bool profiling = false;
@@ -97,6 +108,7 @@ struct WorldImpl {
   double* stage(double StepProfile::*field) { return profiling ? &(profile.*field) : nullptr; }
   StepProfile* profiled() { return profiling ? &profile : nullptr; }
   Slots<Body> bodies;
+  std::vector<BodyBookkeeping> bookkeeping;  // by body slot
   /// The slots of living bodies that are not static (types never change), ascending, and each
   /// slot's place in that list (-1: static or free). The per-step scans go through this list, in
   /// slot order as before, so static bodies (a map's walls) cost a step nothing.
@@ -166,14 +178,14 @@ struct WorldImpl {
   uint64_t steps = 0;
 
   // Broad phase bookkeeping (world.cpp).
-  void createProxies(Body& body);
-  void destroyProxies(Body& body);
+  void createProxies(int slot);
+  void destroyProxies(int slot);
   void markMoved(int proxy);
   bool movedThisStep(int proxy) const {
     return proxy < static_cast<int>(proxyMoved.size()) && proxyMoved[proxy];
   }
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
-  void updateProxies(Body& body, bool forced);
+  void updateProxies(int slot, bool forced);
   void destroyContactsOf(int bodySlot);
   /// Removes the contacts `pred` selects, keeping the others in order.
   template <class Pred>

@@ -47,9 +47,9 @@ namespace {
 // Whether no point of the body has moved as far as the fat boxes' margin since they were placed:
 // at most the shift of its origin plus the chord its farthest point turned through,
 // reach * 2 sin(turn / 2) = reach * sqrt(2 - 2 cos(turn)).
-bool movedLessThanMargin(const Body& body) {
-  const double dx = body.xf.p.x() - body.proxyXf.p.x(), dy = body.xf.p.y() - body.proxyXf.p.y();
-  const double cosTurn = body.proxyXf.q.c * body.xf.q.c + body.proxyXf.q.s * body.xf.q.s;
+bool movedLessThanMargin(const Body& body, const Transform& placed) {
+  const double dx = body.xf.p.x() - placed.p.x(), dy = body.xf.p.y() - placed.p.y();
+  const double cosTurn = placed.q.c * body.xf.q.c + placed.q.s * body.xf.q.s;
   const double reach = body.maxExtent + body.localCenter.norm();
   const double chord = reach * std::sqrt(std::max(0.0, 2.0 - 2.0 * cosTurn));
   return std::sqrt(dx * dx + dy * dy) + chord < 0.5 * kAabbMargin;
@@ -69,14 +69,15 @@ void WorldImpl::updateBroadPhase() {
     out.clear();
     const int end = std::min(movables, (block + 1) * kBodiesPerBlock);
     for (int k = block * kBodiesPerBlock; k < end; ++k) {
-      Body& body = bodies.items[movableSlots[k]];
-      if (!body.awake || movedLessThanMargin(body)) continue;
+      const Body& body = bodies.items[movableSlots[k]];
+      BodyBookkeeping& book = bookkeeping[movableSlots[k]];
+      if (!body.awake || movedLessThanMargin(body, book.proxyXf)) continue;
       const size_t before = out.size();
       for (size_t k = 0; k < body.shapes.size(); ++k) {
         const Aabb box = computeAabb(body.shapes[k], body.xf);
-        if (!tree.fatAabb(body.proxies[k]).contains(box)) out.emplace_back(body.proxies[k], box);
+        if (!tree.fatAabb(book.proxies[k]).contains(box)) out.emplace_back(book.proxies[k], box);
       }
-      if (out.size() - before == body.shapes.size()) body.proxyXf = body.xf;  // all placed anew
+      if (out.size() - before == body.shapes.size()) book.proxyXf = body.xf;  // all placed anew
     }
   });
   for (const std::vector<std::pair<int, Aabb>>& block : refits) {
