@@ -79,7 +79,7 @@ class Reader {
     const char* name = e.Attribute("name");
     const char* file = e.Attribute("filename");
     std::string out = std::string(e.Value()) + " " + quotedName(name ? name : "");
-    if (file != nullptr) out += " (" + std::string(file) + ")";
+    if (file != nullptr) out += " (" + quotedName(file) + ")";
     return out;
   }
 
@@ -106,11 +106,19 @@ class Reader {
     return value;
   }
 
-  // A frame named after a link of the model is that link's frame; other names are the model's.
-  std::string frame(const std::string& name) const {
-    std::string f = trimmed(name);
+  // The frame that `key` names ("" when it is not given): a frame named after a link of the
+  // model is that link's frame; other names are the model's. It must be a name the scene format
+  // takes for its own frames (names.hpp), or tf would carry it.
+  std::string frame(const TiXmlElement& plugin, const char* key, const std::string& fallback,
+                    std::string* error) const {
+    std::string f = trimmed(text(plugin, key, fallback));
     while (!f.empty() && f.front() == '/') f.erase(0, 1);
-    return f.empty() ? "" : model_ + "/" + f;
+    if (f.empty()) return "";
+    f = model_ + "/" + f;
+    const std::string why = scene_detail::checkName(f);
+    if (!why.empty() && error->empty())
+      *error = std::string(key) + " " + quotedName(f) + ": " + why;
+    return f;
   }
 
   bool locate(const std::string& link, LinkPlace* out) const { return locate_(link, out); }
@@ -152,7 +160,7 @@ class Reader {
       }
       if (rate > 0.0) d.imu.updateRate = rate;
       d.imu.angularVelocityNoise = d.imu.linearAccelerationNoise = Eigen::Vector3d::Constant(noise);
-      const std::string f = frame(text(plugin, "frameName"));
+      const std::string f = frame(plugin, "frameName", "", &error);
       if (!f.empty()) d.frame = f;
       const std::string why = mount(place.inBody, &d.imu.offset, &d.imu.offsetAngle, nullptr);
       if (!why.empty()) {
@@ -164,7 +172,7 @@ class Reader {
       DriveDef& drive = d.drive;
       drive.cmdVelTopic = topic(plugin, "commandTopic", "cmd_vel", &error);
       if (error.empty()) drive.odomTopic = topic(plugin, "odometryTopic", "odom", &error);
-      const std::string odomFrame = frame(text(plugin, "odometryFrame", "odom"));
+      const std::string odomFrame = frame(plugin, "odometryFrame", "odom", &error);
       if (!odomFrame.empty()) drive.odomFrame = odomFrame;
       const std::string publishTf = trimmed(text(plugin, "publishOdomTF", "true"));
       drive.publishTf = !(publishTf == "false" || publishTf == "0");
@@ -253,7 +261,7 @@ class Reader {
     std::string error;
     double rate = 0.0;
     if (!number(sensor, "update_rate", 0.0, &rate)) return where + "update_rate must be a number";
-    const std::string f = frame(text(*plugin, "frameName"));
+    const std::string f = frame(*plugin, "frameName", "", &error);
     if (laser) {
       d.type = DeviceType::Laser;
       LaserDef& l = d.laser;
@@ -280,6 +288,11 @@ class Reader {
       }
       if (noise != nullptr && !number(*noise, "stddev", 0.0, &l.noiseStddev)) {
         return where + "ray/noise/stddev must be a number";
+      }
+      if (samples > kMaxLaserBeams) {
+        warnings_->push_back(where + "ray/scan/horizontal: samples beyond " +
+                             std::to_string(kMaxLaserBeams) +
+                             " beams: kept the scanner's default beams");
       }
       if (samples >= 1.0 && samples <= kMaxLaserBeams && maxAngle >= minAngle) {
         l.angleMin = minAngle;

@@ -170,6 +170,13 @@ TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
        "at most 1e6 Hz)"},
       {R"(<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><wheelAcceleration>1e9</wheelAcceleration></plugin></gazebo>)",
        "wheelAcceleration must be at most 1e6"},
+      // Frames follow the scene format's rule for names, as tf would carry them.
+      {R"(<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><odometryFrame>odom frame</odometryFrame></plugin></gazebo>)",
+       "odometryFrame 'tb/odom frame': may only contain"},
+      {R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><plugin name="p" filename="libgazebo_ros_laser.so"><frameName>my laser</frameName></plugin></sensor></gazebo>)",
+       "frameName 'tb/my laser': may only contain"},
+      {R"(<gazebo><plugin name="i" filename="libgazebo_ros_imu.so"><bodyName>base_footprint</bodyName><frameName>imu!</frameName></plugin></gazebo>)",
+       "frameName 'tb/imu!': may only contain"},
   };
   for (const Case& c : cases) {
     UrdfModel model;
@@ -198,8 +205,30 @@ TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
       << error;
   ASSERT_EQ(own.scene.devices.size(), 1u);
   EXPECT_EQ(deviceFrameOf(own.scene.devices[0]), "tb/base_footprint/s");
-  EXPECT_NE(model.warnings[0].find("plugin 'x' (libsomething.so): skipped"), std::string::npos);
+  EXPECT_NE(model.warnings[0].find("plugin 'x' ('libsomething.so'): skipped"), std::string::npos);
   EXPECT_NE(model.warnings[1].find("sensor 's': skipped: it is tilted"), std::string::npos);
+  // A file name is the user's text: a line break in it does not break the one-line message.
+  UrdfModel broken;
+  ASSERT_TRUE(
+      parse(base + R"(<gazebo><plugin name="x" filename="lib&#10;thing.so"/></gazebo></robot>)",
+            "xy", false, &broken, &error))
+      << error;
+  ASSERT_EQ(broken.warnings.size(), 1u);
+  EXPECT_EQ(broken.warnings[0].find('\n'), std::string::npos) << broken.warnings[0];
+  EXPECT_NE(broken.warnings[0].find("('lib?thing.so')"), std::string::npos) << broken.warnings[0];
+  // More beams than a scanner may have: the defaults stay, and the warning says so.
+  UrdfModel wide;
+  ASSERT_TRUE(parse(
+      base +
+          R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><ray><scan><horizontal><samples>200000</samples><min_angle>-1</min_angle><max_angle>1</max_angle></horizontal></scan></ray><plugin name="p" filename="libgazebo_ros_laser.so"/></sensor></gazebo></robot>)",
+      "xy", false, &wide, &error))
+      << error;
+  ASSERT_EQ(wide.scene.devices.size(), 1u);
+  EXPECT_EQ(wide.scene.devices[0].laser.angleMin, LaserDef().angleMin);
+  ASSERT_EQ(wide.warnings.size(), 1u);
+  EXPECT_NE(wide.warnings[0].find("samples beyond 100000 beams: kept the scanner's default beams"),
+            std::string::npos)
+      << wide.warnings[0];
 }
 
 TEST(UrdfFolding, StrictAndTheSideViewRefuseAsBefore) {
