@@ -10,7 +10,7 @@
 //
 //   box 7 used 0b0101, box 9 used 0b0011  ->  free: ~(0b0111)  ->  start 0: colour 3
 //
-// The caller picks the start (contact_bundles.cpp: by a hash of the contact's key, which keeps
+// The caller picks the start (step_colors.cpp: by a hash of the constraint's key, which keeps
 // Gauss-Seidel from a systematic order; plain first fit is start 0).
 // A body with more constraints than colours sends the rest to the overflow, solved one by one.
 #pragma once

@@ -4,26 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "constraint_coloring.hpp"
-
 namespace impulse2d {
 namespace {
-
-// A contact takes the first colour free for both its bodies at or after a colour picked by its
-// key's hash among the first kColorSpread. Plain first fit in key order gives every body its
-// contacts in the same pattern (a box's left support before its right one, across the whole
-// pile), and Gauss-Seidel in such a systematic order leans tall piles over: the 5050-box pyramid
-// moved 1.9 m sideways in 300 steps; spread over 8 colours it moves 7 mm (12 colours in all).
-constexpr int kColorSpread = 8;
-// Colours of fewer contacts than this join the overflow.
-constexpr int kMinColorSize = 2 * kBundleLanes;
-
-int startColor(uint64_t key) {
-  key ^= key >> 33;
-  key *= 0xff51afd7ed558ccdull;
-  key ^= key >> 33;
-  return static_cast<int>(key % kColorSpread);
-}
 
 // A body as a lane sees it: the row it reads (~row when it must not write it back), its inverse
 // masses, its centre of mass and velocity when the step began. In scalars, as everything in
@@ -143,81 +125,35 @@ void fillLane(ContactBundle& c, BundleExtra& e, int lane, const Contact& contact
 
 }  // namespace
 
-void ContactBundles::assign(const std::vector<Contact>& contacts,
-                            const std::vector<int>& jointSlots,
-                            const std::vector<std::pair<int, int>>& jointBodies,
-                            const SubstepBodies& bodies) {
-  ConstraintColoring coloring;
-  coloring.reset(bodies.dynamicCount());
-  constexpr int kOverflowIndex = ConstraintColoring::kMaxColors;  // the overflow's, in `count`
-  laneOf_.resize(contacts.size());
-  colorOf_.resize(contacts.size());
-  jointColor_.resize(jointSlots.size());
-  int count[kOverflowIndex + 1] = {};  // constraints, joints and contacts
-  int jointCount[kOverflowIndex + 1] = {};
-  auto dynamicEntry = [&](int slot) {
-    const int entry = bodies.entryOf(slot);
-    return bodies.isDynamicEntry(entry) ? entry : -1;
-  };
-  for (size_t k = 0; k < jointSlots.size(); ++k) {
-    const int color =
-        coloring.assign(dynamicEntry(jointBodies[k].first), dynamicEntry(jointBodies[k].second),
-                        startColor(static_cast<uint64_t>(jointSlots[k]) << 32));
-    jointColor_[k] = color == ConstraintColoring::kOverflow ? kOverflowIndex : color;
-    ++count[jointColor_[k]];
-    ++jointCount[jointColor_[k]];
+void ContactBundles::assign(const std::vector<Contact>& contacts, const StepColors& colors) {
+  // Each colour's bundles, colour after colour, the overflow's last.
+  const int colorCount = colors.colorCount();
+  colorStart_.assign(1, 0);
+  for (int color = 0; color <= colorCount; ++color) {
+    colorStart_.push_back(colorStart_.back() +
+                          (colors.contactsOf(color) + kBundleLanes - 1) / kBundleLanes);
   }
-  for (size_t i = 0; i < contacts.size(); ++i) {
-    const Contact& contact = contacts[i];
-    colorOf_[i] = -1;
-    if (contact.manifold.pointCount == 0) continue;
-    const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
-    if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
-    if (dynamicA == dynamicB) continue;          // two members of one welded cluster
-    const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
-    colorOf_[i] = color == ConstraintColoring::kOverflow ? kOverflowIndex : color;
-    ++count[colorOf_[i]];
-  }
-  // A colour of a few constraints costs the threads a stage for little work: they join the
-  // overflow. Then each colour's bundles, and last the overflow's.
-  int bundleOf[kOverflowIndex + 1];  // each colour's first bundle
-  int compact[kOverflowIndex + 1];   // each colour's index among the colours kept
-  int bundles = 0;
-  colorStart_.clear();
-  for (int color = 0; color <= kOverflowIndex; ++color) {
-    if (color < kOverflowIndex && count[color] < kMinColorSize) {
-      count[kOverflowIndex] += count[color];
-      jointCount[kOverflowIndex] += jointCount[color];
-      bundleOf[color] = compact[color] = -1;
-      continue;
-    }
-    compact[color] = static_cast<int>(colorStart_.size());
-    colorStart_.push_back(bundles);
-    bundleOf[color] = bundles;
-    bundles += (count[color] - jointCount[color] + kBundleLanes - 1) / kBundleLanes;
-  }
-  jointsOfColor_.resize(colorStart_.size());
-  for (std::vector<int>& list : jointsOfColor_) list.clear();
-  for (size_t k = 0; k < jointSlots.size(); ++k) {
-    const int color = compact[jointColor_[k]] < 0 ? kOverflowIndex : jointColor_[k];
-    jointsOfColor_[compact[color]].push_back(jointSlots[k]);
-  }
+  colorStart_.pop_back();  // the overflow's bundles run to the end
+  const int bundles =
+      colorStart_.back() + (colors.contactsOf(colorCount) + kBundleLanes - 1) / kBundleLanes;
   bundles_.resize(static_cast<size_t>(bundles));
   extras_.resize(static_cast<size_t>(bundles));
-  int rank[kOverflowIndex + 1] = {};
+  // Each contact its lane: the next free one of its colour, in the contacts' order.
+  laneOf_.resize(contacts.size());
+  rank_.assign(static_cast<size_t>(colorCount) + 1, 0);
   contactCount_ = 0;
   for (size_t i = 0; i < contacts.size(); ++i) {
+    const int color = colors.colorOfContact(i);
     laneOf_[i] = -1;
-    if (colorOf_[i] < 0) continue;
-    const int color = bundleOf[colorOf_[i]] < 0 ? kOverflowIndex : colorOf_[i];
-    const int r = rank[color]++;
-    laneOf_[i] = (bundleOf[color] + r / kBundleLanes) * kBundleLanes + r % kBundleLanes;
+    if (color < 0) continue;
+    const int r = rank_[static_cast<size_t>(color)]++;
+    laneOf_[i] = (colorStart_[color] + r / kBundleLanes) * kBundleLanes + r % kBundleLanes;
     ++contactCount_;
   }
-  for (int color = 0; color <= kOverflowIndex; ++color) {
-    const int lanes = count[color] - jointCount[color];
-    for (int r = 0; bundleOf[color] >= 0 && r < lanes; r += kBundleLanes) {
-      bundles_[bundleOf[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, lanes - r);
+  for (int color = 0; color <= colorCount; ++color) {
+    const int lanes = colors.contactsOf(color);
+    for (int r = 0; r < lanes; r += kBundleLanes) {
+      bundles_[colorStart_[color] + r / kBundleLanes].laneCount = std::min(kBundleLanes, lanes - r);
     }
   }
 }

@@ -25,6 +25,7 @@
 
 #include "contact.hpp"
 #include "feedback.hpp"
+#include "step_colors.hpp"
 #include "substep_bodies.hpp"
 
 #include <impulse2d/defs.hpp>
@@ -112,11 +113,12 @@ struct BundlePass {
 /// The colours' bundles of one step, built from the touching contacts of moving bodies.
 class ContactBundles {
  public:
-  /// Colours the joints (in the order given) and the contacts (in theirs), and gives each
-  /// contact its lane, colour after colour, then the overflow, whose bundles are solved one lane
-  /// after the other. On one thread.
-  void assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
-              const std::vector<std::pair<int, int>>& jointBodies, const SubstepBodies& bodies);
+  /// Colours of fewer constraints than this join the overflow (StepColors::assign): two
+  /// bundles' worth.
+  static constexpr int kMinColorSize = 2 * kBundleLanes;
+  /// Gives each contact that `colors` solves its lane, colour after colour, then the overflow,
+  /// whose bundles are solved one lane after the other. On one thread.
+  void assign(const std::vector<Contact>& contacts, const StepColors& colors);
   /// Fills the lanes of the contacts [first, last) as the step begins, reading the contacts in
   /// order; impulses are the arbiters' whole-step ones divided among `substeps`. What follows
   /// from the lane alone (masses, block, shift) is left to finishFill.
@@ -129,8 +131,6 @@ class ContactBundles {
   void store(std::vector<Contact>& contacts, size_t first, size_t last) const;
 
   int colorCount() const { return static_cast<int>(colorStart_.size()) - 1; }
-  /// The joints (slots) of a colour; of the overflow for colorCount().
-  const std::vector<int>& jointsOf(int color) const { return jointsOfColor_[color]; }
   int colorBegin(int color) const { return colorStart_[color]; }
   int colorEnd(int color) const { return colorStart_[color + 1]; }
   int overflowBegin() const { return colorStart_.back(); }
@@ -150,9 +150,7 @@ class ContactBundles {
   std::vector<BundleExtra> extras_;
   std::vector<int> colorStart_;  // bundles of colour c: [colorStart_[c], colorStart_[c + 1])
   std::vector<int> laneOf_;      // by contact: bundle * kBundleLanes + lane, or -1: not solved
-  std::vector<int> colorOf_;     // by contact, scratch of assign()
-  std::vector<int> jointColor_;  // by joint given to assign(), scratch
-  std::vector<std::vector<int>> jointsOfColor_;  // by colour (compacted), the overflow last
+  std::vector<int> rank_;        // by colour, scratch of assign(): its contacts placed so far
   size_t contactCount_ = 0;
 };
 

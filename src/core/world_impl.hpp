@@ -141,6 +141,7 @@ struct WorldImpl {
   ContactSolver contactSolver;
   // The sub-stepping solvers (world_substeps.cpp) on these, on the step's threads.
   SubstepBodies substepBodies;
+  StepColors stepColors;
   ContactBundles contactBundles;
   StepWorkers stepWorkers;
   std::vector<std::pair<int, int>> activeJointBodies;  // by active joint: its bodies' slots
@@ -225,7 +226,18 @@ struct WorldImpl {
   /// empty.
   void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
                   bool pose);
+  // solveSubsteps' stages, in order.
+  /// The active joints and the contacts coloured together, the joints copied colour by colour.
+  void colorConstraints();
+  /// The bundles' pass parameters for sub-steps of h seconds.
+  BundlePass bundlePass(double h);
+  /// The warm-start guard, then the contacts into their lanes.
+  void fillBundles(double dt, int substeps, bool soft);
+  /// The step's summed impulses back into the contacts.
+  void storeBundles();
   void correctSubstepPositions(const BundlePass& pass);
+  /// The bodies that moved farther than the speculative margin, for continuous collision.
+  void findFastSubstepBodies();
   /// Lists the joints the step solves (both solver paths): those with a body for which
   /// moves(slot) holds, except welds inside a welded cluster (one rigid body already); without
   /// warm starting their kept impulses are dropped.

@@ -99,35 +99,11 @@ void WorldImpl::solveSubsteps(double dt) {
             stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
   laps.lap(&StepProfile::prepare);
-
-  collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
-  activeJointBodies.clear();  // what the colouring needs of them
-  for (const int j : activeJoints) {
-    activeJointBodies.emplace_back(joints.items[j].bodyA, joints.items[j].bodyB);
-  }
-  contactBundles.assign(contacts, activeJoints, activeJointBodies, sb);
+  colorConstraints();
   laps.lap(&StepProfile::coloring);
-  // The joints, colour after colour and the overflow last, copied side by side: a colour's
-  // joints are every few in slot order, and a pass over them there waited on memory at each.
-  solverJoints.clear();
-  jointStart.assign(1, 0);
-  for (int color = 0; color <= contactBundles.colorCount(); ++color) {
-    for (const int slot : contactBundles.jointsOf(color))
-      solverJoints.push_back(joints.items[slot]);
-    jointStart.push_back(static_cast<int>(solverJoints.size()));
-  }
-
-  BundlePass pass = contactBundles.pass(sb);
-  pass.h = h;
-  pass.inverseH = 1.0 / h;
-  pass.maxPushVelocity = def.maxPushVelocity;
-  const double contactHertz = std::min(def.contactHertz, kMaxContactHertzPerSubstepRate / h);
-  pass.dynamicSoft = springFeedback(contactHertz, def.contactDampingRatio, h);
-  pass.staticSoft = springFeedback(2.0 * contactHertz, def.contactDampingRatio, h);
-  pass.restitutionThreshold = def.restitutionThreshold;
-  pass.baumgarte = def.baumgarte;
-  pass.linearSlop = def.linearSlop;
-  pass.maxLinearCorrection = kMaxLinearCorrection;
+  BundlePass pass = bundlePass(h);
+  fillBundles(dt, substeps, soft);
+  laps.lap(&StepProfile::prepare);
 
   const Feedback rigid;  // no bias
   Feedback jointSpring = springFeedback(std::min(def.jointHertz, kMaxJointHertzPerSubstepRate / h),
@@ -135,8 +111,6 @@ void WorldImpl::solveSubsteps(double dt) {
   jointSpring.maxPush = def.maxPushVelocity;
   const int bodyBlocks = blocksOf(sb.movingCount(), kBodiesPerBlock);
   const int dynamicBlocks = blocksOf(sb.dynamicCount(), kBodiesPerBlock);
-  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
-
   const MotionLimits motionLimits = MotionLimits::of(def, h);
   // Joints prepare their rows at the bodies' poses when a pass first reaches them. Without the
   // soft step's springs, the rows the last relax pass prepared are this sub-step's already: the
@@ -161,26 +135,6 @@ void WorldImpl::solveSubsteps(double dt) {
       run(p, begin, end, oneByOne);
     };
   };
-
-  // What the last step kept, before the bundles take the contacts' (warm_start_guard.hpp).
-  guardedJoints.clear();
-  for (Joint& joint : solverJoints) guardedJoints.push_back(&joint);
-  warmStartGuard.run(
-      guardedJoints, contacts, sb.dynamicCount(),
-      [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
-      [&](int slot) { return sb.view(slot); }, def.gravity.norm() * dt);
-  stepWorkers.stage(contactBlocks, [&](int block, int) {
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
-                        bodies.items, substeps);
-  });
-  const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
-  stepWorkers.stage(fillBlocks, [&](int block, int) {
-    const int begin = block * 8 * kBundlesPerBlock;
-    contactBundles.finishFill(
-        begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb, soft);
-  });
-  laps.lap(&StepProfile::prepare);
   for (substep = 0; substep < substeps; ++substep) {
     stepWorkers.stage(dynamicBlocks, [&](int block, int) {
       sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
@@ -209,10 +163,7 @@ void WorldImpl::solveSubsteps(double dt) {
   }
   pass.relax = false;
   overColors(nullptr, kernel(restituteBundles), pass, false);
-  stepWorkers.stage(contactBlocks, [&](int block, int) {
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
-  });
+  storeBundles();
   laps.lap(&StepProfile::restitution);
   if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
   laps.lap(&StepProfile::positions);
@@ -221,8 +172,78 @@ void WorldImpl::solveSubsteps(double dt) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
   });
   laps.lap(&StepProfile::integrate);
+  findFastSubstepBodies();
+  laps.lap(&StepProfile::continuous);
+}
 
+void WorldImpl::colorConstraints() {
+  SubstepBodies& sb = substepBodies;
+  collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
+  activeJointBodies.clear();  // what the colouring needs of them
+  for (const int j : activeJoints) {
+    activeJointBodies.emplace_back(joints.items[j].bodyA, joints.items[j].bodyB);
+  }
+  stepColors.assign(contacts, activeJoints, activeJointBodies, sb, ContactBundles::kMinColorSize);
+  contactBundles.assign(contacts, stepColors);
+  // The joints, colour after colour and the overflow last, copied side by side: a colour's
+  // joints are every few in slot order, and a pass over them there waited on memory at each.
+  solverJoints.clear();
+  jointStart.assign(1, 0);
+  for (int color = 0; color <= stepColors.colorCount(); ++color) {
+    for (const int slot : stepColors.jointsOf(color)) solverJoints.push_back(joints.items[slot]);
+    jointStart.push_back(static_cast<int>(solverJoints.size()));
+  }
+}
+
+BundlePass WorldImpl::bundlePass(double h) {
+  BundlePass pass = contactBundles.pass(substepBodies);
+  pass.h = h;
+  pass.inverseH = 1.0 / h;
+  pass.maxPushVelocity = def.maxPushVelocity;
+  const double contactHertz = std::min(def.contactHertz, kMaxContactHertzPerSubstepRate / h);
+  pass.dynamicSoft = springFeedback(contactHertz, def.contactDampingRatio, h);
+  pass.staticSoft = springFeedback(2.0 * contactHertz, def.contactDampingRatio, h);
+  pass.restitutionThreshold = def.restitutionThreshold;
+  pass.baumgarte = def.baumgarte;
+  pass.linearSlop = def.linearSlop;
+  pass.maxLinearCorrection = kMaxLinearCorrection;
+  return pass;
+}
+
+void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
+  SubstepBodies& sb = substepBodies;
+  // What the last step kept, before the bundles take the contacts' (warm_start_guard.hpp).
+  guardedJoints.clear();
+  for (Joint& joint : solverJoints) guardedJoints.push_back(&joint);
+  warmStartGuard.run(
+      guardedJoints, contacts, sb.dynamicCount(),
+      [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
+      [&](int slot) { return sb.view(slot); }, def.gravity.norm() * dt);
+  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
+  stepWorkers.stage(contactBlocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
+                        bodies.items, substeps);
+  });
+  const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
+  stepWorkers.stage(fillBlocks, [&](int block, int) {
+    const int begin = block * 8 * kBundlesPerBlock;
+    contactBundles.finishFill(
+        begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb, soft);
+  });
+}
+
+void WorldImpl::storeBundles() {
+  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
+  stepWorkers.stage(contactBlocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
+  });
+}
+
+void WorldImpl::findFastSubstepBodies() {
   // Continuous collision looks at the whole step's motion, as after a one-pass solve.
+  SubstepBodies& sb = substepBodies;
   fastBodies.clear();
   fastClusters.clear();
   for (int e = 0; e < sb.dynamicCount(); ++e) {
@@ -231,7 +252,6 @@ void WorldImpl::solveSubsteps(double dt) {
     noteIfFast(sb.clusterRows(), e, start.slot, sb.sim(e).center0, start.angle0, Vec2(s.dx, s.dy),
                s.turned);
   }
-  laps.lap(&StepProfile::continuous);
 }
 
 // NGS passes after the sub-steps: push what still overlaps apart by moving the bodies (no

@@ -1,0 +1,42 @@
+// The sub-stepping solvers' colours of one step: the active joints and the touching contacts
+// coloured together (constraint_coloring.hpp), so that a colour's joints and contacts can all be
+// solved at once, then the colours of few constraints folded into the overflow, which is solved
+// one constraint after the other. ContactBundles lays each colour's contacts into lanes; the
+// joints are solved colour by colour from jointsOf().
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "contact.hpp"
+#include "substep_bodies.hpp"
+
+namespace impulse2d {
+
+class StepColors {
+ public:
+  /// Colours the joints (slots, in the order given, with their bodies' slots) first and then the
+  /// contacts (in their order); a colour of fewer than `minSize` constraints joins the overflow.
+  /// On one thread.
+  void assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
+              const std::vector<std::pair<int, int>>& jointBodies, const SubstepBodies& bodies,
+              int minSize);
+
+  /// The colours kept; the overflow is colour colorCount().
+  int colorCount() const { return static_cast<int>(jointsOfColor_.size()) - 1; }
+  /// The joints (slots) of a colour, in the order given; of the overflow for colorCount().
+  const std::vector<int>& jointsOf(int color) const { return jointsOfColor_[color]; }
+  /// A contact's colour (colorCount() for the overflow), or -1: not solved (no dynamic body
+  /// it could move, no point, or inside one welded cluster).
+  int colorOfContact(size_t contact) const { return colorOfContact_[contact]; }
+  /// How many contacts a colour has (the overflow's for colorCount()).
+  int contactsOf(int color) const { return contactCount_[color]; }
+
+ private:
+  std::vector<int> colorOfContact_;              // by contact
+  std::vector<int> jointColor_;                  // by joint given to assign(), scratch
+  std::vector<std::vector<int>> jointsOfColor_;  // by colour kept, the overflow last
+  std::vector<int> contactCount_;                // by colour kept, the overflow last
+};
+
+}  // namespace impulse2d
