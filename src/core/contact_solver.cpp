@@ -8,12 +8,63 @@
 
 namespace impulse2d {
 
+// A body pressed into overlaps from opposite sides by bodies the step does not move (static,
+// kinematic, asleep) cannot leave them. Baumgarte's pushes out of each overlap cannot all be met,
+// so the iterations and the warm starts grow their impulses without bound, step after step (the
+// core soak saw 4,400 N s on a 0.6 kg rod wedged between two stopped kinematic bodies), until
+// one of the contacts drops and the others fling the body out (157 m/s). Such a body's contacts
+// with them get no push, only what stops it going deeper: that set can be met.
+//
+//      ///// still /////           the pushes into the body from the
+//         n1 |  v                 bodies that do not move oppose
+//        +---------+              (more than 120 degrees apart):
+//        |  body   |              crushed
+//        +---------+
+//         n2 ^  |
+//      ///// still /////
+void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies) {
+  const Vec2 none(0.0, 0.0), marked(2.0, 2.0);  // pushes are unit vectors
+  std::fill(crushed_.begin(), crushed_.end(), 0);
+  for (const Contact& contact : contacts) {
+    const Manifold& m = contact.manifold;
+    bool overlapping = false;
+    for (int i = 0; i < m.pointCount; ++i) overlapping |= m.points[i].separation < 0.0;
+    if (!overlapping) continue;
+    const bool movesA = bodies.isActive(contact.bodyA), movesB = bodies.isActive(contact.bodyB);
+    if (movesA == movesB) continue;  // both move, or neither
+    const int slot = movesA ? contact.bodyA : contact.bodyB;
+    const Vec2 push = movesA ? Vec2(-m.normal) : m.normal;  // into the body that moves
+    const size_t needed = static_cast<size_t>(slot) + 1;
+    if (pushOfSlot_.size() < needed) {
+      pushOfSlot_.resize(needed, none);
+      crushed_.resize(needed, 0);
+    }
+    Vec2& first = pushOfSlot_[static_cast<size_t>(slot)];
+    if (first == none) {
+      first = push;
+    } else if (first != marked && first.dot(push) < -0.5) {
+      first = marked;
+      crushed_[static_cast<size_t>(slot)] = 1;
+    }
+  }
+  std::fill(pushOfSlot_.begin(), pushOfSlot_.end(), none);
+}
+
+bool ContactSolver::pressesCrushed(const Contact& contact, const SolverBodies& bodies) const {
+  auto crushed = [&](int slot) {
+    return static_cast<size_t>(slot) < crushed_.size() && crushed_[static_cast<size_t>(slot)];
+  };
+  return (crushed(contact.bodyA) && !bodies.isActive(contact.bodyB)) ||
+         (crushed(contact.bodyB) && !bodies.isActive(contact.bodyA));
+}
+
 void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
                             const WorldDef& def, double dt) {
   constraints_.clear();
   extras_.clear();
   bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
+  if (baumgarte) findCrushed(contacts, bodies);
   const double inverseDt = 1.0 / dt;
   for (Contact& contact : contacts) {
     const Manifold& m = contact.manifold;
@@ -39,6 +90,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     c.restitution = contact.restitution;
     c.pointCount = m.pointCount;
     const Vec2 tangent = perp(m.normal);
+    const bool push = baumgarte && !pressesCrushed(contact, bodies);
     for (int i = 0; i < m.pointCount; ++i) {
       const ManifoldPoint& mp = m.points[i];
       ContactConstraintPoint& p = c.points[i];
@@ -60,7 +112,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       if (mp.separation > 0.0) {
         // Speculative: not touching yet, so the bodies may close the gap within this step.
         p.targetVelocity = -mp.separation * inverseDt;
-      } else if (baumgarte) {
+      } else if (push) {
         // Capped, so that bodies spawned deep inside each other separate instead of exploding.
         p.targetVelocity =
             std::min(def.baumgarte / dt * std::max(0.0, -mp.separation - def.linearSlop),

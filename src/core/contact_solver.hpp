@@ -81,8 +81,16 @@ class ContactSolver {
                                double target2);
   SolverBodies* bodies_ = nullptr;  // this step's; entries may be added until the solve starts
 
+  /// Baumgarte: marks crushed_ (by slot) the bodies pressed into overlaps from opposite sides
+  /// by bodies the step does not move.
+  void findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies);
+  /// Whether the contact presses a crushed body against a body the step does not move.
+  bool pressesCrushed(const Contact& contact, const SolverBodies& bodies) const;
+
   std::vector<ContactConstraint> constraints_;
   std::vector<ContactConstraintExtra> extras_;  // by constraint
+  std::vector<Vec2> pushOfSlot_;                // findCrushed's scratch: the first push seen
+  std::vector<char> crushed_;                   // by slot, this step (baumgarte)
 };
 
 }  // namespace impulse2d
