@@ -20,6 +20,11 @@ bool isTouching(const Contact& contact) {
 }  // namespace
 
 void WorldImpl::updateSleep(double dt) {
+  std::vector<int>& adjacencyStart = scratch.adjacencyStart;
+  std::vector<int>& adjacencyFill = scratch.adjacencyFill;
+  std::vector<int>& adjacency = scratch.adjacency;
+  std::vector<int>& island = scratch.island;
+  std::vector<int>& islandStack = scratch.islandStack;
   const StageClock clock(stage(&StepProfile::sleep));
   if (!def.enableSleep) {
     // Nothing may sleep, so no islands are needed. Bodies put to sleep before sleeping was

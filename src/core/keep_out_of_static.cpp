@@ -62,9 +62,9 @@ void moveOut(std::vector<Body>& bodies, const int* begin, const int* end, const 
 void WorldImpl::keepOutOfStatic() {
   const StageClock clock(stage(&StepProfile::continuous));
   // The deep ones first, by body (in slot order, then contact order: deterministic).
-  std::vector<DeepStatic>& deep = deepStatic;
+  std::vector<DeepStatic>& deep = scratch.deepStatic;
   deep.clear();
-  clusterPush.assign(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
+  scratch.clusterPush.assign(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
   for (size_t i = 0; i < contacts.size(); ++i) {
     const Contact& contact = contacts[i];
     if (contact.manifold.pointCount == 0) continue;
@@ -131,10 +131,10 @@ void WorldImpl::pushOut(int slot, const Vec2& push, const Vec2& n) {
   // until it closes again (weld_clusters.cpp) and is solved as a joint meanwhile: the welds give,
   // not the walls.
   if (cluster >= 0) {
-    if (clusterPush.size() < static_cast<size_t>(weldClusters.count())) {
-      clusterPush.resize(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
+    if (scratch.clusterPush.size() < static_cast<size_t>(weldClusters.count())) {
+      scratch.clusterPush.resize(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
     }
-    Vec2& first = clusterPush[static_cast<size_t>(cluster)];
+    Vec2& first = scratch.clusterPush[static_cast<size_t>(cluster)];
     if (first.isZero()) first = n;
     if (first.dot(n) >= -0.3) {
       moveOut(bodies.items, weldClusters.membersBegin(cluster), weldClusters.membersEnd(cluster),

@@ -97,7 +97,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
 
   // Awake dynamic bodies only: a sleeping one rests on something, and static bodies cost
   // nothing here.
-  std::vector<int>& candidates = lostCandidates;
+  std::vector<int>& candidates = scratch.lostCandidates;
   candidates.clear();
   for (const int i : movableSlots) {
     const Body& body = bodies.items[i];
@@ -119,7 +119,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
     }
   }
   // 0: not a candidate, 1: a candidate, 2: a candidate already grouped.
-  std::vector<char>& mark = lostCandidateMark;
+  std::vector<char>& mark = scratch.lostCandidateMark;
   mark.assign(bodies.items.size(), 0);
   for (const int slot : candidates) {
     const bool below = floor.top(bodies.items[slot]) > floorLine + floor.height;
@@ -130,7 +130,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   // Bodies joined by joints go together: a joint to anything that is not below (a body above,
   // a static pin) holds the whole group (a chain hanging from a ledge, a rope over the edge),
   // and a group that rises as a whole (thrown up, bouncing off another) may still come back.
-  std::vector<int>& group = lostGroup;
+  std::vector<int>& group = scratch.lostGroup;
   for (const int first : candidates) {
     if (mark[first] != 1) continue;
     group.assign(1, first);

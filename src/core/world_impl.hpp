@@ -100,6 +100,39 @@ struct BodyBookkeeping {
   bool lost = false;   // reported lost for good (World::takeLostBodies), not back since
 };
 
+/// A body deeper in a static one than it may be (keep_out_of_static.cpp).
+struct DeepStatic {
+  int slot, contact;
+  Vec2 n;  // the contact's normal when the step began, out of the static body
+};
+
+/// The buffers the step's stages reuse, so that a warm step allocates nothing: scratch, each
+/// stage's own, meaningless between steps.
+struct StepScratch {
+  // Broad phase (world_step.cpp): by block, the proxies that left their fat boxes; the pairs
+  // and contacts found.
+  std::vector<std::vector<std::pair<int, Aabb>>> refits;
+  std::vector<std::pair<int, int>> newPairs;
+  std::vector<Contact> newContacts;
+  // Both solver paths: the joints the warm-start guard looks at.
+  std::vector<Joint*> guardedJoints;
+  // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.
+  std::vector<std::pair<Vec2, double>> onePassStarts;
+  // Sub-steps' NGS passes (world_substeps.cpp): by worker, its verdicts.
+  std::vector<char> workerJointsOk;
+  std::vector<double> workerDeepest;
+  // Keeping out of static bodies (keep_out_of_static.cpp): the deep bodies; by welded cluster,
+  // its first push out this step.
+  std::vector<DeepStatic> deepStatic;
+  std::vector<Vec2> clusterPush;
+  // Sleeping (island_sleep.cpp): contacts by movable place (compressed), the island being built.
+  std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
+  // Lost bodies (world_bounds.cpp): the candidates, their marks by body slot, a joined group.
+  std::vector<int> lostCandidates;
+  std::vector<char> lostCandidateMark;
+  std::vector<int> lostGroup;
+};
+
 struct WorldImpl {
   WorldDef def;
   bool profiling = false;
@@ -132,9 +165,6 @@ struct WorldImpl {
 
   std::vector<Contact> contacts;             // solved in this order
   std::unordered_set<uint64_t> contactKeys;  // the keys of `contacts`: a pair is found once
-  // Reused buffers of findNewContacts, so the step allocates nothing once warm.
-  std::vector<std::pair<int, int>> newPairs;
-  std::vector<Contact> newContacts;
 
   // The one-pass solvers (baumgarte, ngs) work on these, not on `bodies`.
   SolverBodies solverBodies;
@@ -145,12 +175,9 @@ struct WorldImpl {
   ContactBundles contactBundles;
   StepWorkers stepWorkers;
   std::vector<std::pair<int, int>> activeJointBodies;  // by active joint: its bodies' slots
-  std::vector<Joint> solverJoints;   // this step's active joints, by colour (copies)
-  std::vector<int> jointStart;       // colour c's in solverJoints: [jointStart[c], [c + 1])
-  std::vector<char> workerJointsOk;  // the NGS pass's verdicts, by worker
-  std::vector<double> workerDeepest;
-  std::vector<uint8_t> contactFates;                      // the narrow phase's verdict, by contact
-  std::vector<std::vector<std::pair<int, Aabb>>> refits;  // proxies that left their fat boxes
+  std::vector<Joint> solverJoints;    // this step's active joints, by colour (copies)
+  std::vector<int> jointStart;        // colour c's in solverJoints: [jointStart[c], [c + 1])
+  std::vector<uint8_t> contactFates;  // the narrow phase's verdict, by contact
   // Continuous collision's bodies and clusters of this step (continuous.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
     int slot;
@@ -170,11 +197,8 @@ struct WorldImpl {
   std::vector<FastCluster> fastClusters;
   WeldClusters weldClusters;  // this step's (weld_clusters.hpp)
   WarmStartGuard warmStartGuard;
-  std::vector<Joint*> guardedJoints;                   // reused: the joints warmStartGuard looks at
-  std::vector<std::pair<Vec2, double>> onePassStarts;  // by dynamic entry: centre, angle
   std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
-  // Reused buffers of the island pass (island_sleep.cpp).
-  std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
+  StepScratch scratch;
   double time = 0.0;
   uint64_t steps = 0;
 
@@ -278,12 +302,6 @@ struct WorldImpl {
   void noteIfFast(const ClusterRows& rows, int row, int slot, const Vec2& center0, double angle0,
                   const Vec2& move, double turn);
   void keepOutOfStatic();  // keep_out_of_static.cpp, with the helpers below
-  struct DeepStatic {      // a body deeper in a static one than it may be
-    int slot, contact;
-    Vec2 n;  // the contact's normal when the step began, out of the static body
-  };
-  std::vector<DeepStatic> deepStatic;  // reused
-  std::vector<Vec2> clusterPush;       // by welded cluster: the first push out this step
   std::pair<const Shape*, const Shape*> staticPair(const Contact& contact) const;
   double staticDepth(const Contact& contact, const Vec2& n) const;
   double allowedDepth(const Contact& contact) const;
@@ -306,9 +324,6 @@ struct WorldImpl {
   void refreshStaticBounds();
   /// Reports the bodies lost for good, or adds them to `removeLost` with def.removeLostBodies.
   void findLostBodies(std::vector<RemovedBody>* removeLost);
-  std::vector<int> lostCandidates;      // reused
-  std::vector<char> lostCandidateMark;  // reused, by body slot
-  std::vector<int> lostGroup;           // reused
 };
 
 }  // namespace impulse2d

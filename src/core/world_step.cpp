@@ -63,9 +63,9 @@ void WorldImpl::updateBroadPhase() {
   // margin and need nothing). Then in slot order, one thread: the tree moves them.
   const int movables = static_cast<int>(movableSlots.size());
   const int blocks = (movables + kBodiesPerBlock - 1) / kBodiesPerBlock;
-  refits.resize(static_cast<size_t>(blocks));
+  scratch.refits.resize(static_cast<size_t>(blocks));
   stepWorkers.stage(blocks, [&](int block, int) {
-    std::vector<std::pair<int, Aabb>>& out = refits[block];
+    std::vector<std::pair<int, Aabb>>& out = scratch.refits[block];
     out.clear();
     const int end = std::min(movables, (block + 1) * kBodiesPerBlock);
     for (int k = block * kBodiesPerBlock; k < end; ++k) {
@@ -80,7 +80,7 @@ void WorldImpl::updateBroadPhase() {
       if (out.size() - before == body.shapes.size()) book.proxyXf = body.xf;  // all placed anew
     }
   });
-  for (const std::vector<std::pair<int, Aabb>>& block : refits) {
+  for (const std::vector<std::pair<int, Aabb>>& block : scratch.refits) {
     for (const auto& [proxy, box] : block) {
       tree.moveProxy(proxy, box.inflated(kAabbMargin));
       markMoved(proxy);
@@ -90,7 +90,7 @@ void WorldImpl::updateBroadPhase() {
 
 void WorldImpl::findNewContacts() {
   const StageClock clock(stage(&StepProfile::broadPhase));
-  std::vector<std::pair<int, int>>& pairs = newPairs;  // reused: no allocation once warm
+  std::vector<std::pair<int, int>>& pairs = scratch.newPairs;  // reused: no allocation once warm
   pairs.clear();
   for (const int proxy : movedProxies) {
     if (!proxyMoved[proxy]) continue;  // destroyed since it moved
@@ -102,7 +102,7 @@ void WorldImpl::findNewContacts() {
   }
   // proxyMoved stays set until the narrow phase has checked the contacts of the moved proxies.
 
-  std::vector<Contact>& fresh = newContacts;
+  std::vector<Contact>& fresh = scratch.newContacts;
   fresh.clear();
   for (const auto& [p, q] : pairs) {
     int slotA = proxySlot(tree.userData(p)), shapeA = proxyShape(tree.userData(p));
@@ -246,10 +246,10 @@ void WorldImpl::solve(double dt) {
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
   fb.maxPush = def.maxPushVelocity;
   prepareJoints(fb, dt);
-  guardedJoints.clear();
-  for (const int j : activeJoints) guardedJoints.push_back(&joints.items[j]);
+  scratch.guardedJoints.clear();
+  for (const int j : activeJoints) scratch.guardedJoints.push_back(&joints.items[j]);
   warmStartGuard.run(
-      guardedJoints, contacts, solverBodies.dynamicCount(),
+      scratch.guardedJoints, contacts, solverBodies.dynamicCount(),
       [&](int slot) {
         const int entry = solverBodies.movingEntryOf(slot);
         return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
@@ -288,12 +288,12 @@ void WorldImpl::integratePositions(double dt) {
   const StageClock clock(stage(&StepProfile::integrate));
   solverBodies.holdKinematicVelocities();
   const MotionLimits limits = MotionLimits::of(def, dt);
-  onePassStarts.resize(static_cast<size_t>(solverBodies.dynamicCount()));
+  scratch.onePassStarts.resize(static_cast<size_t>(solverBodies.dynamicCount()));
   for (int e = 0; e < solverBodies.movingCount(); ++e) {
     SolverBody& body = solverBodies[e];
     if (solverBodies.isDynamic(e)) {
       limits.apply(body.linearVelocity, body.angularVelocity);
-      onePassStarts[e] = {body.center, body.angle};
+      scratch.onePassStarts[e] = {body.center, body.angle};
     }
     body.center += dt * body.linearVelocity;
     turnBy(body, dt * body.angularVelocity);
@@ -314,7 +314,7 @@ void WorldImpl::findOnePassFastBodies() {
   fastClusters.clear();
   for (int e = 0; e < solverBodies.dynamicCount(); ++e) {
     const SolverBody& entry = solverBodies[e];
-    const auto& [center0, angle0] = onePassStarts[e];
+    const auto& [center0, angle0] = scratch.onePassStarts[e];
     noteIfFast(solverBodies.clusterRows(), e, solverBodies.slotOf(e), center0, angle0,
                entry.center - center0, entry.angle - angle0);
   }

@@ -213,10 +213,10 @@ BundlePass WorldImpl::bundlePass(double h) {
 void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
   SubstepBodies& sb = substepBodies;
   // What the last step kept, before the bundles take the contacts' (warm_start_guard.hpp).
-  guardedJoints.clear();
-  for (Joint& joint : solverJoints) guardedJoints.push_back(&joint);
+  scratch.guardedJoints.clear();
+  for (Joint& joint : solverJoints) scratch.guardedJoints.push_back(&joint);
   warmStartGuard.run(
-      guardedJoints, contacts, sb.dynamicCount(),
+      scratch.guardedJoints, contacts, sb.dynamicCount(),
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
       [&](int slot) { return sb.view(slot); }, def.gravity.norm() * dt);
   const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
@@ -260,22 +260,23 @@ void WorldImpl::findFastSubstepBodies() {
 void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
   const size_t workers = static_cast<size_t>(stepWorkers.threads());
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
-    workerJointsOk.assign(workers, 1);
-    workerDeepest.assign(workers, 0.0);
+    scratch.workerJointsOk.assign(workers, 1);
+    scratch.workerDeepest.assign(workers, 0.0);
     const JointOp jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
-      if (!solveJointPosition(j, a, b, def)) workerJointsOk[static_cast<size_t>(worker)] = 0;
+      if (!solveJointPosition(j, a, b, def))
+        scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
     };
     const BundleOp contactPositions = [&](const BundlePass& p, int begin, int end, bool oneByOne,
                                           int worker) {
-      double& deepest = workerDeepest[static_cast<size_t>(worker)];
+      double& deepest = scratch.workerDeepest[static_cast<size_t>(worker)];
       deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
     };
     overColors(jointPositions, contactPositions, pass, true);
     bool jointsOk = true;
     double deepest = 0.0;
     for (size_t w = 0; w < workers; ++w) {
-      jointsOk = jointsOk && workerJointsOk[w];
-      deepest = std::min(deepest, workerDeepest[w]);
+      jointsOk = jointsOk && scratch.workerJointsOk[w];
+      deepest = std::min(deepest, scratch.workerDeepest[w]);
     }
     if (jointsOk && overlapsResolved(deepest, def.linearSlop)) break;
   }
