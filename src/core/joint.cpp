@@ -157,7 +157,7 @@ void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimi
 }
 
 void scaleJointImpulses(Joint& joint, double scale) {
-  joint.pointImpulse *= scale;
+  joint.pairImpulse *= scale;
   joint.motorImpulse *= scale;
   joint.lowerImpulse *= scale;
   joint.upperImpulse *= scale;

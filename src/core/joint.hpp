@@ -42,18 +42,22 @@ struct Joint {
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
   double restLength = 0.0;           // distance: the length the joint keeps (m)
 
-  // Accumulated impulses, kept across steps. The prismatic keeps its perpendicular and angular
-  // rows in pointImpulse (x, y); the distance its limits in lowerImpulse / upperImpulse.
-  Vec2 pointImpulse = Vec2::Zero();
+  // Accumulated impulses, kept across steps. Every type's limits are lowerImpulse and
+  // upperImpulse (revolute: the angle; prismatic: the slide; distance: the length).
+  //
+  // The pair: two equality rows solved together as one 2x2 block, with pairMass the block's
+  // inverse and pairBias its target rates. Revolute and weld: the anchors' gap, x and y;
+  // prismatic: across the rail and the angle.
+  Vec2 pairImpulse = Vec2::Zero();
   double motorImpulse = 0.0;
   double lowerImpulse = 0.0, upperImpulse = 0.0;
   double angularImpulse = 0.0;  // weld angle row
   double lengthImpulse = 0.0;   // distance length row (rigid or spring)
 
   // Pre-step scratch.
-  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();  // from each centre of mass to the anchor
-  Eigen::Matrix2d pointMass = Eigen::Matrix2d::Zero();
-  Vec2 pointBias = Vec2::Zero();
+  Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();           // from each centre of mass to the anchor
+  Eigen::Matrix2d pairMass = Eigen::Matrix2d::Zero();  // the pair's (see pairImpulse)
+  Vec2 pairBias = Vec2::Zero();
   double axialMass = 0.0;
   double angle = 0.0;                       // current joint angle relative to the reference
   double lowerBias = 0.0, upperBias = 0.0;  // target rates of the limit constraints
@@ -62,7 +66,7 @@ struct Joint {
   Vec2 axis = Vec2::Zero(), normal = Vec2::Zero();
   double axisArmA = 0.0, axisArmB = 0.0, normalArmA = 0.0, normalArmB = 0.0;
   double axialPosition = 0.0;  // prismatic translation or distance length now (m)
-  // Equality rows' target rates (Baumgarte or spring), like pointBias.
+  // Equality rows' target rates (Baumgarte or spring), like pairBias.
   double angularBias = 0.0, lengthBias = 0.0;
   // Weld: the inverse of the 3x3 block (point + angle) when rigid.
   Eigen::Matrix3d blockMass = Eigen::Matrix3d::Zero();

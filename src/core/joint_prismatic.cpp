@@ -18,7 +18,7 @@
 //   K = [mA + mB + iA sA^2 + iB sB^2,  iA sA + iB sB]    sA = cross(rA + d, n)
 //       [iA sA + iB sB,                iA + iB      ]    sB = cross(rB, n)
 //   axial: mA + mB + iA aA^2 + iB aB^2                   aA = cross(rA + d, u), aB = cross(rB, u)
-// Impulses: pointImpulse = (perpendicular, angular); the axial one is motor + lower - upper.
+// Impulses: pairImpulse = (perpendicular, angular); the axial one is motor + lower - upper.
 #include "joint.hpp"
 
 #include <algorithm>
@@ -102,10 +102,10 @@ double axialMassOf(const Joint& j, const SolverBody& a, const SolverBody& b) {
 void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
   const Rail rail = railOf(joint, a, b);
   storeRail(joint, rail, a, b);
-  joint.pointMass = safeInverse(blockMatrix(joint, a, b));
+  joint.pairMass = safeInverse(blockMatrix(joint, a, b));
   joint.axialMass = axialMassOf(joint, a, b);
   const Vec2 error(rail.normal.dot(rail.d), joint.angle);
-  joint.pointBias =
+  joint.pairBias =
       Vec2(linearBias(error.x(), fb), angularBias(error.y(), fb, anchorReach(joint.rA, joint.rB)));
   joint.lowerBias =
       limitBias(joint.axialPosition - joint.params.lower, fb, dt, &joint.lowerFeedback, fb.maxPush);
@@ -116,7 +116,7 @@ void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback
 }
 
 void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b) {
-  applyRows(joint, a, b, joint.pointImpulse.x(), joint.pointImpulse.y(),
+  applyRows(joint, a, b, joint.pairImpulse.x(), joint.pairImpulse.y(),
             joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse);
 }
 
@@ -149,9 +149,9 @@ void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double d
                       joint.normalArmB * b.angularVelocity - joint.normalArmA * a.angularVelocity,
                   b.angularVelocity - a.angularVelocity);
   const Feedback& fb = joint.feedback;
-  const Vec2 impulse = fb.massScale * (joint.pointMass * (joint.pointBias - cdot)) -
-                       fb.impulseScale * joint.pointImpulse;
-  joint.pointImpulse += impulse;
+  const Vec2 impulse = fb.massScale * (joint.pairMass * (joint.pairBias - cdot)) -
+                       fb.impulseScale * joint.pairImpulse;
+  joint.pairImpulse += impulse;
   applyRows(joint, a, b, impulse.x(), impulse.y(), 0.0);
 }
 

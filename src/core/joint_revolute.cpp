@@ -18,13 +18,13 @@ void applyAngular(SolverBody& a, SolverBody& b, double impulse) {
 void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
   joint.rA = a.q.apply(joint.localAnchorA - a.localCenter);
   joint.rB = b.q.apply(joint.localAnchorB - b.localCenter);
-  joint.pointMass = safeInverse(pointMassMatrix(a, b, joint.rA, joint.rB));
+  joint.pairMass = safeInverse(pointMassMatrix(a, b, joint.rA, joint.rB));
   const double inertiaSum = a.invInertia + b.invInertia;
   joint.axialMass = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
   joint.angle = b.angle - a.angle - joint.referenceAngle;
 
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pointBias = pointBias(gap, fb);
+  joint.pairBias = pointBias(gap, fb);
   const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
   joint.lowerBias =
       limitBias(joint.angle - joint.params.lower, fb, dt, &joint.lowerFeedback, maxTurn);
@@ -35,7 +35,7 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
 }
 
 void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
-  const Vec2& p = joint.pointImpulse;
+  const Vec2& p = joint.pairImpulse;
   const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
   applyJointImpulse(a, b, p, cross(joint.rA, p) + axial, cross(joint.rB, p) + axial);
 }
@@ -67,9 +67,9 @@ void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt
   const Vec2 cdot = b.linearVelocity + cross(b.angularVelocity, joint.rB) - a.linearVelocity -
                     cross(a.angularVelocity, joint.rA);
   const Feedback& fb = joint.feedback;
-  const Vec2 impulse = fb.massScale * (joint.pointMass * (joint.pointBias - cdot)) -
-                       fb.impulseScale * joint.pointImpulse;
-  joint.pointImpulse += impulse;
+  const Vec2 impulse = fb.massScale * (joint.pairMass * (joint.pairBias - cdot)) -
+                       fb.impulseScale * joint.pairImpulse;
+  joint.pairImpulse += impulse;
   applyJointImpulse(a, b, impulse, cross(joint.rA, impulse), cross(joint.rB, impulse));
 }
 

@@ -60,10 +60,10 @@ void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb,
   joint.angle = b.angle - a.angle - joint.referenceAngle;
   const Eigen::Matrix3d k = blockMatrix(a, b, joint.rA, joint.rB);
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pointBias = pointBias(gap, fb);
+  joint.pairBias = pointBias(gap, fb);
 
   if (isSoft(joint)) {
-    joint.pointMass = safeInverse(k.topLeftCorner<2, 2>());
+    joint.pairMass = safeInverse(k.topLeftCorner<2, 2>());
     const double inertiaSum = a.invInertia + b.invInertia;
     const Softness soft = softness(joint.params.frequency, joint.params.dampingRatio,
                                    inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0, dt);
@@ -78,7 +78,7 @@ void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb,
 }
 
 void warmStartWeld(Joint& joint, SolverBody& a, SolverBody& b) {
-  applyPointAndAngle(joint, a, b, joint.pointImpulse, joint.angularImpulse);
+  applyPointAndAngle(joint, a, b, joint.pairImpulse, joint.angularImpulse);
 }
 
 void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/) {
@@ -91,23 +91,22 @@ void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/
     applyPointAndAngle(joint, a, b, Vec2::Zero(), impulse);
 
     const Feedback& fb = joint.feedback;
-    const Vec2 point =
-        fb.massScale * (joint.pointMass * (joint.pointBias - pointRate(joint, a, b))) -
-        fb.impulseScale * joint.pointImpulse;
-    joint.pointImpulse += point;
+    const Vec2 point = fb.massScale * (joint.pairMass * (joint.pairBias - pointRate(joint, a, b))) -
+                       fb.impulseScale * joint.pairImpulse;
+    joint.pairImpulse += point;
     applyPointAndAngle(joint, a, b, point, 0.0);
     return;
   }
   const Vec2 rate = pointRate(joint, a, b);
   const Eigen::Vector3d cdot(rate.x(), rate.y(), b.angularVelocity - a.angularVelocity);
-  const Eigen::Vector3d bias(joint.pointBias.x(), joint.pointBias.y(), joint.angularBias);
-  const Eigen::Vector3d accumulated(joint.pointImpulse.x(), joint.pointImpulse.y(),
+  const Eigen::Vector3d bias(joint.pairBias.x(), joint.pairBias.y(), joint.angularBias);
+  const Eigen::Vector3d accumulated(joint.pairImpulse.x(), joint.pairImpulse.y(),
                                     joint.angularImpulse);
   const Feedback& fb = joint.feedback;
   const Eigen::Vector3d impulse =
       fb.massScale * (joint.blockMass * (bias - cdot)) - fb.impulseScale * accumulated;
   const Vec2 point = impulse.head<2>();
-  joint.pointImpulse += point;
+  joint.pairImpulse += point;
   joint.angularImpulse += impulse.z();
   applyPointAndAngle(joint, a, b, point, impulse.z());
 }

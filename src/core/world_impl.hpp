@@ -275,7 +275,7 @@ struct WorldImpl {
       if (weldClusters.joins(joint.bodyA, joint.bodyB)) continue;
       activeJoints.push_back(static_cast<int>(j));
       if (!def.warmStarting) {
-        joint.pointImpulse.setZero();
+        joint.pairImpulse.setZero();
         joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
       }
     }
