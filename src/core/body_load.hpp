@@ -5,6 +5,8 @@
 
 #include <impulse2d/math.hpp>
 
+#include <cmath>
+
 namespace impulse2d {
 
 /// v = (v + dv) * damping over one (sub-)step.
@@ -25,6 +27,13 @@ inline BodyLoad loadOver(double h, const Vec2& gravity, double invMass, double i
   if (angularDamping > 0.0) load.angularDamping = 1.0 / (1.0 + h * angularDamping);
   return load;
 }
+
+/// The last guard against non-finite impulses, in both solver paths: 0 x inf is NaN in the rows
+/// of static and sleeping bodies, which every body touching them reads. A dynamic body whose
+/// velocity or load this step is not finite stands still with infinite mass for the rest of the
+/// step and is removed at its end (world_bounds.cpp, RemovalCause::Overflow). Finite but absurd
+/// loads are bounded by the motion limits instead.
+inline bool isFiniteMotion(double vx, double vy, double w) { return std::isfinite(vx + vy + w); }
 
 /// Adds the load to a velocity.
 inline void applyLoad(const BodyLoad& load, double& vx, double& vy, double& w) {

@@ -86,13 +86,9 @@ bool SubstepBodies::add(const Body& body, int slot, int entry, const Vec2& gravi
     BodyLoad& load = loads_[entry];
     load = loadOver(h, gravity, body.invMass, body.invInertia, body.force, body.torque,
                     body.linearDamping, body.angularDamping);
-    // The last guard against non-finite impulses (0 x inf is NaN in the static bodies' rows,
-    // which every body touching them reads): a state or load that is not finite. The body
-    // stands still with infinite mass for the step and is removed at its end
-    // (world_bounds.cpp). Finite but absurd loads are bounded by the motion limits instead.
-    const bool finite = std::isfinite(state.vx + state.vy + state.w) &&
-                        std::isfinite(load.dvx + load.dvy + load.dw);
-    if (!finite) {
+    // The last guard (body_load.hpp, isFiniteMotion): held still with infinite mass.
+    if (!isFiniteMotion(state.vx, state.vy, state.w) ||
+        !isFiniteMotion(load.dvx, load.dvy, load.dw)) {
       state.vx = state.vy = state.w = 0.0;
       sim.invMass = sim.invInertia = 0.0;
       load = BodyLoad();
@@ -127,8 +123,8 @@ void SubstepBodies::addCluster(const WeldClusters& clusters, int cluster, const 
   load = loadOver(h, gravity, sim.invMass, sim.invInertia, r.force, r.torque, r.linearDamping,
                   r.angularDamping);
   clusterRows_.add(clusters, cluster, bodies, r.center, entry, entryOfSlot_);
-  const bool finite = std::isfinite(state.vx + state.vy + state.w) &&
-                      std::isfinite(load.dvx + load.dvy + load.dw) &&
+  const bool finite = isFiniteMotion(state.vx, state.vy, state.w) &&
+                      isFiniteMotion(load.dvx, load.dvy, load.dw) &&
                       std::isfinite(sim.invMass + sim.invInertia) && isFinite(sim.center0);
   if (!finite) {  // as add(): held still, and every member removed at the end of the step
     state = BodyState();

@@ -200,11 +200,8 @@ void WorldImpl::integrateVelocities(double dt) {
               vx, vy, body.angularVelocity);
     body.linearVelocity = Vec2(vx, vy);
     limits.apply(body.linearVelocity, body.angularVelocity);
-    // The last guard against non-finite impulses: 0 x inf is NaN in the static and sleeping
-    // bodies' read-only entries, which every other body touching them reads. A body whose
-    // velocity is not finite stands still, with infinite mass, for the rest of the step, and is
-    // removed at its end (world_bounds.cpp).
-    if (!(isFinite(body.linearVelocity) && std::isfinite(body.angularVelocity))) {
+    // The last guard (body_load.hpp, isFiniteMotion): held still with infinite mass.
+    if (!isFiniteMotion(body.linearVelocity.x(), body.linearVelocity.y(), body.angularVelocity)) {
       body.linearVelocity.setZero();
       body.angularVelocity = body.invMass = body.invInertia = 0.0;
       overflowedBodies.push_back(solverBodies.slotOf(e));
