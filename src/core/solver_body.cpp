@@ -35,19 +35,20 @@ void SolverBodies::addCluster(const WeldClusters& clusters, int cluster) {
   clusterRows_.add(clusters, cluster, bodies, r.center, entry, indexOfSlot_);
 }
 
-void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
+void SolverBodies::gather(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
                           const WeldClusters& clusters) {
   bodies_ = &bodies;
   entries_.clear();
   loads_.clear();
   slots_.clear();
   indexOfSlot_.assign(bodies.size(), kNone);
+  // Through the living bodies that are not static, in ascending slots: static ones cost nothing.
   for (const BodyType type : {BodyType::Dynamic, BodyType::Kinematic}) {
-    for (size_t i = 0; i < bodies.size(); ++i) {
-      if (!alive[i] || bodies[i].type != type || !bodies[i].awake) continue;
-      const int cluster = clusters.clusterOf(static_cast<int>(i));
-      if (cluster >= 0 && clusters.root(cluster) != static_cast<int>(i)) continue;
-      add(bodies[i], static_cast<int>(i), false);
+    for (const int i : movableSlots) {
+      if (bodies[i].type != type || !bodies[i].awake) continue;
+      const int cluster = clusters.clusterOf(i);
+      if (cluster >= 0 && clusters.root(cluster) != i) continue;
+      add(bodies[i], i, false);
     }
     if (type == BodyType::Dynamic) dynamicCount_ = static_cast<int>(entries_.size());
   }

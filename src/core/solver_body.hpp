@@ -83,7 +83,8 @@ class SolverBodies {
   /// order, except that each welded cluster (weld_clusters.hpp) is one entry, its root's, which
   /// every member's slot maps to. Entries of other bodies are added by ensureEntryOf() as
   /// constraints need them.
-  void gather(const std::vector<Body>& bodies, const std::vector<char>& alive,
+  /// movableSlots: the living non-static bodies' slots, ascending (WorldImpl::movableSlots).
+  void gather(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
               const WeldClusters& clusters);
   /// The entry of the body in `slot`, or -1 when the step does not move it.
   int movingEntryOf(int slot) const {

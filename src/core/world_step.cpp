@@ -273,7 +273,7 @@ void WorldImpl::solve(double dt) {
 void WorldImpl::gatherSolverBodies() {
   const StageClock clock(stage(&StepProfile::prepare));
   weldClusters.find(bodies.items, bodies.alive, joints.items, joints.alive);
-  solverBodies.gather(bodies.items, bodies.alive, weldClusters);
+  solverBodies.gather(bodies.items, movableSlots, weldClusters);
 }
 
 void WorldImpl::storeMotion() {
