@@ -38,7 +38,7 @@ int WeldClusters::findRoot(int slot) {
   return slot;
 }
 
-void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<char>& bodyAlive,
+void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
                         const std::vector<Joint>& joints, const std::vector<char>& jointAlive) {
   roots_.clear();
   first_.clear();
@@ -50,9 +50,9 @@ void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<char>
   }
   if (!anyWeld) return;
 
-  const int slots = static_cast<int>(bodies.size());
+  // Only awake dynamic bodies merge (mergeable), so only movable slots take part.
   parent_.resize(bodies.size());
-  for (int i = 0; i < slots; ++i) parent_[i] = i;
+  for (const int i : movableSlots) parent_[i] = i;
   for (size_t j = 0; j < joints.size(); ++j) {
     const Joint& joint = joints[j];
     if (!jointAlive[j] || !merges(joint, bodies)) continue;
@@ -62,8 +62,8 @@ void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<char>
   // Number the clusters by their roots (the lowest slot), in slot order; then list the members.
   clusterOfSlot_.assign(bodies.size(), -1);
   std::vector<int> size;
-  for (int i = 0; i < slots; ++i) {
-    if (!bodyAlive[i] || parent_[i] == i) continue;
+  for (const int i : movableSlots) {
+    if (parent_[i] == i) continue;
     const int root = findRoot(i);
     if (clusterOfSlot_[root] < 0) {
       clusterOfSlot_[root] = static_cast<int>(roots_.size());
@@ -77,7 +77,7 @@ void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<char>
   for (size_t c = 0; c < roots_.size(); ++c) first_[c + 1] = first_[c] + size[c];
   members_.resize(static_cast<size_t>(first_.back()));
   std::vector<int> next(first_.begin(), first_.end() - 1);
-  for (int i = 0; i < slots; ++i) {
+  for (const int i : movableSlots) {
     if (clusterOfSlot_[i] >= 0) members_[next[clusterOfSlot_[i]]++] = i;
   }
 }

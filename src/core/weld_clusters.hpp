@@ -64,8 +64,9 @@ bool isRigidWeld(const Joint& joint);
 class WeldClusters {
  public:
   /// Finds this step's clusters: awake dynamic bodies joined by rigid welds. Costs one pass over
-  /// the joints when there is no rigid weld between two such bodies.
-  void find(const std::vector<Body>& bodies, const std::vector<char>& bodyAlive,
+  /// the joints when there is no rigid weld between two such bodies; else passes over the
+  /// movable slots (WorldImpl::movableSlots, ascending: static bodies are never members).
+  void find(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
             const std::vector<Joint>& joints, const std::vector<char>& jointAlive);
   bool any() const { return !roots_.empty(); }
   int count() const { return static_cast<int>(roots_.size()); }

@@ -94,7 +94,7 @@ void WorldImpl::solveSubsteps(double dt) {
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
   StageLaps laps(profiled());
-  weldClusters.find(bodies.items, bodies.alive, joints.items, joints.alive);
+  weldClusters.find(bodies.items, movableSlots, joints.items, joints.alive);
   sb.gather(bodies.items, movableSlots, def.gravity, h, MotionLimits::of(def, h), weldClusters,
             stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
