@@ -2,7 +2,13 @@
 // island has been still for timeToSleep, the whole island sleeps. Sleeping bodies are neither
 // integrated, nor refitted in the broad phase, nor solved, so a settled pile costs nothing.
 // Static bodies join no island: a box on the ground sleeps on its own, not with everything else
-// that happens to rest on the same ground.
+// that happens to rest on the same ground. Kinematic bodies join none either, but a moving one
+// keeps what touches it awake.
+//
+// The islands are found anew each step by union-find over the dynamic bodies' places in
+// movableSlots: one pass over the contacts and joints links bodies, then each island is read at
+// its root. An island with an awake body wakes its sleepers (something touches them); islands
+// of sleepers only are left as they are.
 #include <limits>
 
 #include "world_impl.hpp"
@@ -17,14 +23,49 @@ bool isTouching(const Contact& contact) {
   return false;
 }
 
+bool isMovingKinematic(const Body& body) {
+  return body.type == BodyType::Kinematic &&
+         (body.linearVelocity.squaredNorm() > 0.0 || body.angularVelocity != 0.0);
+}
+
+// The root of place k's island; halves the path on the way, so chains stay short.
+int rootOf(std::vector<int>& parent, int k) {
+  while (parent[k] != k) {
+    parent[k] = parent[parent[k]];
+    k = parent[k];
+  }
+  return k;
+}
+
 }  // namespace
 
+// A sleeping body jointed to a moving one wakes before the solver runs, and so does everything
+// jointed to it. Asleep, it would hold its joints like a static anchor: a force on one of two
+// roped boxes at rest was taken up by the rope for a whole step, and lost. (Contacts wake what
+// moving bodies touch in the narrow phase; updateSleep wakes the rest of the island after.)
+void WorldImpl::wakeJointedSleepers() {
+  if (joints.count() == 0) return;
+  const StageClock clock(stage(&StepProfile::sleep));
+  std::vector<int>& stack = scratch.wakeStack;
+  stack.clear();
+  for (const int i : movableSlots) {
+    if (!jointsOfBody[i].empty() && isMoving(bodies.items[i])) stack.push_back(i);
+  }
+  while (!stack.empty()) {
+    const int slot = stack.back();
+    stack.pop_back();
+    for (const int j : jointsOfBody[slot]) {
+      const Joint& joint = joints.items[j];
+      const int other = joint.bodyA == slot ? joint.bodyB : joint.bodyA;
+      Body& body = bodies.items[other];
+      if (body.type != BodyType::Dynamic || body.awake) continue;
+      wakeBody(body);
+      stack.push_back(other);
+    }
+  }
+}
+
 void WorldImpl::updateSleep(double dt) {
-  std::vector<int>& adjacencyStart = scratch.adjacencyStart;
-  std::vector<int>& adjacencyFill = scratch.adjacencyFill;
-  std::vector<int>& adjacency = scratch.adjacency;
-  std::vector<int>& island = scratch.island;
-  std::vector<int>& islandStack = scratch.islandStack;
   const StageClock clock(stage(&StepProfile::sleep));
   if (!def.enableSleep) {
     // Nothing may sleep, so no islands are needed. Bodies put to sleep before sleeping was
@@ -37,30 +78,15 @@ void WorldImpl::updateSleep(double dt) {
   const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;
   const double angTol2 = def.sleepAngularTolerance * def.sleepAngularTolerance;
 
-  // Contacts per body that moves, as a compressed adjacency list (counts, then offsets) by its
-  // place in movableSlots, rebuilt each step into reused buffers. Static bodies have none: the
-  // flood fill below never goes on from one, so theirs would never be read.
-  const int movableCount = static_cast<int>(movableSlots.size());
-  adjacencyStart.assign(movableCount + 1, 0);
-  for (const Contact& c : contacts) {
-    if (!isTouching(c)) continue;
-    if (isMovable(c.bodyA)) ++adjacencyStart[movableIndex[c.bodyA] + 1];
-    if (isMovable(c.bodyB)) ++adjacencyStart[movableIndex[c.bodyB] + 1];
-  }
-  for (int k = 0; k < movableCount; ++k) adjacencyStart[k + 1] += adjacencyStart[k];
-  adjacency.resize(adjacencyStart[movableCount]);
-  adjacencyFill.assign(adjacencyStart.begin(), adjacencyStart.end() - 1);
-  for (const Contact& c : contacts) {
-    if (!isTouching(c)) continue;
-    if (isMovable(c.bodyA)) adjacency[adjacencyFill[movableIndex[c.bodyA]]++] = c.bodyB;
-    if (isMovable(c.bodyB)) adjacency[adjacencyFill[movableIndex[c.bodyB]]++] = c.bodyA;
-  }
-
-  // Static bodies are never flagged: only dynamic ones join islands.
+  bool anyAwake = false, anyAsleep = false;
   for (const int i : movableSlots) {
     Body& body = bodies.items[i];
-    bookkeeping[i].islandFlag = 0;
-    if (body.type != BodyType::Dynamic || !body.awake) continue;
+    if (body.type != BodyType::Dynamic) continue;
+    if (!body.awake) {
+      anyAsleep = true;
+      continue;
+    }
+    anyAwake = true;
     const bool still = body.linearVelocity.squaredNorm() <= linTol2 &&
                        body.angularVelocity * body.angularVelocity <= angTol2;
     body.sleepTime = still ? body.sleepTime + dt : 0.0;
@@ -75,51 +101,72 @@ void WorldImpl::updateSleep(double dt) {
       }
     }
   }
+  if (!anyAwake) return;  // no island has a body awake: none wakes, none falls asleep
+  bool anyStill = false;
+  for (const int i : movableSlots) {
+    const Body& body = bodies.items[i];
+    anyStill = anyStill || (isActive(body) && body.sleepTime >= def.timeToSleep);
+  }
+  // No awake body has been still long enough, so no island can fall asleep; and with no sleeper
+  // there is nothing to wake. The common case of a busy world.
+  if (!anyStill && !anyAsleep) return;
 
-  // Flood fill from each awake dynamic body. A sleeping body reached from an awake one is woken:
-  // something touches it.
-  for (const int seed : movableSlots) {
-    Body& start = bodies.items[seed];
-    if (start.type != BodyType::Dynamic || !start.awake || bookkeeping[seed].islandFlag) {
-      continue;
+  // Link the dynamic bodies that touch or are jointed; mark those a moving kinematic body
+  // touches or holds.
+  const int movableCount = static_cast<int>(movableSlots.size());
+  std::vector<int>& parent = scratch.islandParent;
+  std::vector<uint8_t>& held = scratch.islandHeld;
+  parent.resize(static_cast<size_t>(movableCount));
+  for (int k = 0; k < movableCount; ++k) parent[k] = k;
+  held.assign(static_cast<size_t>(movableCount), 0);
+  auto link = [&](int slotA, int slotB) {
+    const Body& a = bodies.items[slotA];
+    const Body& b = bodies.items[slotB];
+    if (a.type == BodyType::Dynamic && b.type == BodyType::Dynamic) {
+      const int rootA = rootOf(parent, movableIndex[slotA]);
+      const int rootB = rootOf(parent, movableIndex[slotB]);
+      if (rootA < rootB) parent[rootB] = rootA;
+      if (rootB < rootA) parent[rootA] = rootB;
+    } else if (a.type == BodyType::Dynamic && isMovingKinematic(b)) {
+      held[movableIndex[slotA]] = 1;
+    } else if (b.type == BodyType::Dynamic && isMovingKinematic(a)) {
+      held[movableIndex[slotB]] = 1;
     }
-    island.clear();
-    islandStack.clear();
-    islandStack.push_back(seed);
-    bookkeeping[seed].islandFlag = 1;
-    double minSleepTime = std::numeric_limits<double>::infinity();
-    while (!islandStack.empty()) {
-      const int index = islandStack.back();
-      islandStack.pop_back();
-      Body& body = bodies.items[index];
-      island.push_back(index);
-      if (!body.awake) wakeBody(body);
-      minSleepTime = std::min(minSleepTime, body.sleepTime);
-      auto visit = [&](int other) {
-        Body& next = bodies.items[other];
-        if (next.type == BodyType::Kinematic &&
-            (next.linearVelocity.squaredNorm() > 0.0 || next.angularVelocity != 0.0)) {
-          minSleepTime = 0.0;  // a moving kinematic body keeps what it touches awake
-        }
-        int& flag = bookkeeping[other].islandFlag;
-        if (next.type != BodyType::Dynamic || flag) return;
-        flag = 1;
-        islandStack.push_back(other);
-      };
-      const int place = movableIndex[index];
-      for (int k = adjacencyStart[place]; k < adjacencyStart[place + 1]; ++k) visit(adjacency[k]);
-      for (const int j : jointsOfBody[index]) {
-        const Joint& joint = joints.items[j];
-        visit(joint.bodyA == index ? joint.bodyB : joint.bodyA);
-      }
-    }
-    if (minSleepTime < def.timeToSleep) continue;
-    for (const int index : island) {
-      Body& body = bodies.items[index];
-      body.awake = false;
-      body.linearVelocity.setZero();
-      body.angularVelocity = 0.0;
-    }
+  };
+  for (const Contact& c : contacts) {
+    if (isTouching(c)) link(c.bodyA, c.bodyB);
+  }
+  for (const int i : movableSlots) {
+    if (bodies.items[i].type != BodyType::Dynamic) continue;
+    for (const int j : jointsOfBody[i]) link(joints.items[j].bodyA, joints.items[j].bodyB);
+  }
+
+  // Each island at its root: whether a body of it is awake, then (its sleepers woken) the least
+  // time any of its bodies has been still, 0 when a moving kinematic body holds one.
+  std::vector<uint8_t>& awakeIsland = scratch.islandAwake;
+  std::vector<double>& stillFor = scratch.islandStillFor;
+  awakeIsland.assign(static_cast<size_t>(movableCount), 0);
+  stillFor.assign(static_cast<size_t>(movableCount), std::numeric_limits<double>::infinity());
+  for (int k = 0; k < movableCount; ++k) {
+    const Body& body = bodies.items[movableSlots[k]];
+    if (body.type == BodyType::Dynamic && body.awake) awakeIsland[rootOf(parent, k)] = 1;
+  }
+  for (int k = 0; k < movableCount; ++k) {
+    Body& body = bodies.items[movableSlots[k]];
+    if (body.type != BodyType::Dynamic) continue;
+    const int root = rootOf(parent, k);
+    if (!awakeIsland[root]) continue;
+    if (!body.awake) wakeBody(body);
+    stillFor[root] = std::min(stillFor[root], held[k] ? 0.0 : body.sleepTime);
+  }
+  for (int k = 0; k < movableCount; ++k) {
+    Body& body = bodies.items[movableSlots[k]];
+    if (body.type != BodyType::Dynamic) continue;
+    const int root = rootOf(parent, k);
+    if (!awakeIsland[root] || stillFor[root] < def.timeToSleep) continue;
+    body.awake = false;
+    body.linearVelocity.setZero();
+    body.angularVelocity = 0.0;
   }
 }
 

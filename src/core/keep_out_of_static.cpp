@@ -67,10 +67,10 @@ void WorldImpl::keepOutOfStatic() {
   scratch.clusterPush.assign(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
   for (size_t i = 0; i < contacts.size(); ++i) {
     const Contact& contact = contacts[i];
-    if (contact.manifold.pointCount == 0) continue;
-    const bool staticA = bodies.items[contact.bodyA].type == BodyType::Static;
-    const bool staticB = bodies.items[contact.bodyB].type == BodyType::Static;
-    if (staticA == staticB) continue;
+    // Static is told by movableIndex (a contact's bodies are alive): most contacts of a pile are
+    // between two dynamic bodies, and are passed over without reading the bodies.
+    const bool staticA = !isMovable(contact.bodyA), staticB = !isMovable(contact.bodyB);
+    if (staticA == staticB || contact.manifold.pointCount == 0) continue;
     const int slot = staticA ? contact.bodyB : contact.bodyA;
     if (!isActive(bodies.items[slot])) continue;
     // The manifold's normal points from A to B.

@@ -89,15 +89,14 @@ inline int64_t proxyData(int slot, int shape) {
 inline int proxySlot(int64_t userData) { return static_cast<int>(userData >> 8); }
 inline int proxyShape(int64_t userData) { return static_cast<int>(userData & 0xff); }
 
-/// What the world keeps of a body besides what users read of it (Body): the broad phase's and the
-/// island pass's bookkeeping.
+/// What the world keeps of a body besides what users read of it (Body): the broad phase's
+/// bookkeeping and whether it was reported lost.
 struct BodyBookkeeping {
   std::vector<int> proxies;  // the broad-phase proxy of each shape
   /// Where the body was when the fat boxes of all its shapes were last placed: while it has
   /// moved less than their margin since, no shape can have left its box.
   Transform proxyXf;
-  int islandFlag = 0;  // the island pass's mark
-  bool lost = false;   // reported lost for good (World::takeLostBodies), not back since
+  bool lost = false;  // reported lost for good (World::takeLostBodies), not back since
 };
 
 /// A body deeper in a static one than it may be (keep_out_of_static.cpp).
@@ -125,8 +124,13 @@ struct StepScratch {
   // its first push out this step.
   std::vector<DeepStatic> deepStatic;
   std::vector<Vec2> clusterPush;
-  // Sleeping (island_sleep.cpp): contacts by movable place (compressed), the island being built.
-  std::vector<int> adjacencyStart, adjacencyFill, adjacency, island, islandStack;
+  // Sleeping (island_sleep.cpp), by movable place: the islands' union-find links (and the bodies
+  // wakeJointedSleepers has still to go on from), whether a
+  // moving kinematic body holds the body; by island root: whether a body is awake, how long all
+  // have been still.
+  std::vector<int> islandParent, wakeStack;
+  std::vector<uint8_t> islandHeld, islandAwake;
+  std::vector<double> islandStillFor;
   // Lost bodies (world_bounds.cpp): the candidates, their marks by body slot, a joined group.
   std::vector<int> lostCandidates;
   std::vector<char> lostCandidateMark;
@@ -308,6 +312,7 @@ struct WorldImpl {
   void pushOut(int slot, const Vec2& push, const Vec2& n);
   bool escapeSeam(const DeepStatic* begin, const DeepStatic* end);
   void solveContinuous();
+  void wakeJointedSleepers();
   void updateSleep(double dt);
   void clearForces();
   // Bodies that left kWorldExtent or stopped being finite (world_bounds.cpp).

@@ -141,5 +141,61 @@ TEST(Sleep, AWorldThatDoesNotSleepCreatesEveryBodyAwake) {
   EXPECT_LT(world.body(box).center.y(), 3.0);
 }
 
+// Islands are the bodies linked by touching contacts and joints, each judged on its own: a pile
+// kept busy does not keep another pile awake, and the ground links nothing.
+TEST(Sleep, TwoPilesApartSleepEachOnItsOwn) {
+  World world;
+  test::addGround(world);
+  const BodyId quietTop = addBox(world, "quiet_top", Vec2(-5, 1.5), 1, 1, BodyType::Dynamic);
+  addBox(world, "quiet_bottom", Vec2(-5, 0.5), 1, 1, BodyType::Dynamic);
+  const BodyId busyTop = addBox(world, "busy_top", Vec2(5, 1.5), 1, 1, BodyType::Dynamic);
+  const BodyId busyBottom = addBox(world, "busy_bottom", Vec2(5, 0.5), 1, 1, BodyType::Dynamic);
+  for (int i = 0; i < 180; ++i) {  // 3 s, the busy pile nudged to and fro
+    world.applyForce(busyBottom, Vec2(i % 60 < 30 ? 20.0 : -20.0, 0.0),
+                     world.body(busyBottom).center);
+    world.step();
+  }
+  EXPECT_FALSE(world.body(quietTop).awake);
+  EXPECT_TRUE(world.body(busyTop).awake) << "it rests on a moving box: same island";
+}
+
+// A joint links two bodies that do not touch into one island: pushing one wakes the other.
+TEST(Sleep, AJointLinksBodiesThatDoNotTouch) {
+  World world;
+  test::addGround(world);
+  const BodyId left = addBox(world, "left", Vec2(-2, 0.5), 1, 1, BodyType::Dynamic);
+  const BodyId right = addBox(world, "right", Vec2(2, 0.5), 1, 1, BodyType::Dynamic);
+  JointDef rope;
+  rope.type = JointType::Distance;
+  rope.bodyA = left;
+  rope.bodyB = right;
+  rope.anchor = world.body(left).center;
+  ASSERT_TRUE(world.createJoint(rope).valid());
+  stepSeconds(world, 3.0);
+  ASSERT_FALSE(world.body(left).awake);
+  ASSERT_FALSE(world.body(right).awake);
+  EXPECT_TRUE(world.applyForce(left, Vec2(-300.0, 0.0), world.body(left).center));
+  world.step();
+  EXPECT_TRUE(world.body(right).awake);
+  EXPECT_TRUE(world.body(left).awake);
+  EXPECT_LT(world.body(left).linearVelocity.x(), -1.0);
+  stepSeconds(world, 0.2);
+  EXPECT_LT(world.body(right).center.x(), 2.0 - 0.01)
+      << "pulled along by the joint; left at " << world.body(left).center.x();
+}
+
+// A moving kinematic body keeps what it touches awake, however slowly it moves; a kinematic
+// body at rest does not.
+TEST(Sleep, AMovingKinematicBodyKeepsWhatItTouchesAwake) {
+  for (const double speed : {0.0, 0.001}) {
+    World world;
+    const BodyId belt = addBox(world, "belt", Vec2(0, -0.5), 10, 1, BodyType::Kinematic);
+    world.setVelocity(belt, Vec2(speed, 0.0), 0.0);
+    const BodyId box = addBox(world, "box", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+    stepSeconds(world, 3.0);
+    EXPECT_EQ(world.body(box).awake, speed > 0.0) << "belt speed " << speed << " m/s";
+  }
+}
+
 }  // namespace
 }  // namespace impulse2d
