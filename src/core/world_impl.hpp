@@ -239,6 +239,7 @@ struct WorldImpl {
   void updateBroadPhase();
   void findNewContacts();
   void updateContacts();
+  void prefetchPairAhead(size_t i, size_t last) const;
   void integrateVelocities(double dt);
   void solve(double dt);
   void solveSubsteps(double dt);

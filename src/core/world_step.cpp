@@ -137,6 +137,36 @@ void WorldImpl::findNewContacts() {
   contacts.insert(contacts.end(), fresh.begin(), fresh.end());
 }
 
+// The narrow phase waits on memory: a contact's two bodies and their shapes lie anywhere. So
+// while it works on contact i, the bodies of contact i + 16 and the shapes of contact i + 8 are
+// asked for (their bodies arrived by then); hints only, nothing computed changes.
+void WorldImpl::prefetchPairAhead(size_t i, size_t last) const {
+  constexpr size_t kBodiesAhead = 16, kShapesAhead = 8;
+  if (i + kBodiesAhead < last) {
+    const Contact& c = contacts[i + kBodiesAhead];
+    const char* a = reinterpret_cast<const char*>(&bodies.items[c.bodyA]);
+    const char* b = reinterpret_cast<const char*>(&bodies.items[c.bodyB]);
+    __builtin_prefetch(a);
+    __builtin_prefetch(a + 64);
+    __builtin_prefetch(a + 128);
+    __builtin_prefetch(b);
+    __builtin_prefetch(b + 64);
+    __builtin_prefetch(b + 128);
+  }
+  if (i + kShapesAhead < last) {
+    const Contact& c = contacts[i + kShapesAhead];
+    for (const auto& [slot, index] : {std::pair(c.bodyA, c.shapeA), std::pair(c.bodyB, c.shapeB)}) {
+      const Shape* shape = bodies.items[slot].shapes.data() + index;
+      const char* bytes = reinterpret_cast<const char*>(shape);
+      __builtin_prefetch(bytes);
+      __builtin_prefetch(bytes + 64);
+      __builtin_prefetch(&shape->polygon.normals[0]);
+      __builtin_prefetch(&shape->polygon.normals[3]);
+      __builtin_prefetch(&shape->filter);
+    }
+  }
+}
+
 void WorldImpl::updateContacts() {
   const StageClock clock(stage(&StepProfile::narrowPhase));
   // In parallel: each contact's new manifold, or its mark to go (its fat boxes parted). Which
@@ -150,6 +180,7 @@ void WorldImpl::updateContacts() {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
     const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
     for (size_t i = first; i < last; ++i) {
+      prefetchPairAhead(i, last);
       Contact& contact = contacts[i];
       const Body& a = bodies.items[contact.bodyA];
       const Body& b = bodies.items[contact.bodyB];
