@@ -96,6 +96,39 @@ HWY_INLINE void storePoses(D d, double* states, const int32_t* stored, int32_t s
   hn::ScatterIndex(b.qs, d, states + kQs, write);
 }
 
+// --- one lane (the overflow, whose lanes go one by one): plain loads and stores ---
+// In a stack the overflow's next contact reads the body the last one wrote. A gather after a
+// scatter to the same row waits for the scatter to reach the cache; a plain load takes the
+// value from the store in flight. Same values, so the same results (stack20 spent two thirds
+// of its step in the one-lane solve, with the gathers and scatters).
+
+using D1 = hn::Simd<double, 1, 0>;
+
+HWY_INLINE Bodies<D1> loadBodies(D1 d, const double* states, const int32_t* stored) {
+  const double* row = states + readOffset(stored[0]);
+  return {hn::Set(d, row[kVx]),     hn::Set(d, row[kVy]), hn::Set(d, row[kW]),
+          hn::Set(d, row[kTurned]), hn::Set(d, row[kDx]), hn::Set(d, row[kDy]),
+          hn::Set(d, row[kQc]),     hn::Set(d, row[kQs])};
+}
+
+HWY_INLINE void storeVelocities(D1 /*d*/, double* states, const int32_t* stored, int32_t sink,
+                                const Bodies<D1>& b) {
+  double* row = states + writeOffset(stored[0], sink);
+  row[kVx] = hn::GetLane(b.vx);
+  row[kVy] = hn::GetLane(b.vy);
+  row[kW] = hn::GetLane(b.w);
+}
+
+HWY_INLINE void storePoses(D1 /*d*/, double* states, const int32_t* stored, int32_t sink,
+                           const Bodies<D1>& b) {
+  double* row = states + writeOffset(stored[0], sink);
+  row[kTurned] = hn::GetLane(b.turned);
+  row[kDx] = hn::GetLane(b.dx);
+  row[kDy] = hn::GetLane(b.dy);
+  row[kQc] = hn::GetLane(b.qc);
+  row[kQs] = hn::GetLane(b.qs);
+}
+
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
 // --- AVX-512: a row is one register; an 8x8 transpose in three rounds of shuffles ---
 
