@@ -28,6 +28,18 @@ bool parse(const std::string& xml, const std::string& plane, bool strict, UrdfMo
   return parseUrdf(xml, placement, out, error);
 }
 
+// `base` (an open <robot> with a link base_footprint) with one ray sensor on that link, whose
+// body is `sensor`; parsed top-down, and expected to load.
+UrdfModel parseWithLaser(const std::string& base, const std::string& sensor) {
+  UrdfModel model;
+  std::string error;
+  EXPECT_TRUE(parse(base + R"(<gazebo reference="base_footprint"><sensor type="ray" name="s">)" +
+                        sensor + "</sensor></gazebo></robot>",
+                    "xy", false, &model, &error))
+      << error;
+  return model;
+}
+
 TEST(UrdfFolding, ATeachingRobotsWheelsFoldIntoItsBaseSeenFromAbove) {
   UrdfModel model;
   std::string error;
@@ -197,12 +209,9 @@ TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
   EXPECT_TRUE(model.scene.devices.empty());
   ASSERT_EQ(model.warnings.size(), 2u);
   // A scanner whose frameName is its body's own frame reads in a frame of its own.
-  UrdfModel own;
-  ASSERT_TRUE(parse(
-      base +
-          R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><plugin name="p" filename="libgazebo_ros_laser.so"><frameName>base_footprint</frameName></plugin></sensor></gazebo></robot>)",
-      "xy", false, &own, &error))
-      << error;
+  const UrdfModel own = parseWithLaser(
+      base,
+      R"(<plugin name="p" filename="libgazebo_ros_laser.so"><frameName>base_footprint</frameName></plugin>)");
   ASSERT_EQ(own.scene.devices.size(), 1u);
   EXPECT_EQ(deviceFrameOf(own.scene.devices[0]), "tb/base_footprint/s");
   EXPECT_NE(model.warnings[0].find("plugin 'x' ('libsomething.so'): skipped"), std::string::npos);
@@ -217,12 +226,9 @@ TEST(UrdfGazebo, BadPluginValuesAreRefusedNamingTheElement) {
   EXPECT_EQ(broken.warnings[0].find('\n'), std::string::npos) << broken.warnings[0];
   EXPECT_NE(broken.warnings[0].find("('lib?thing.so')"), std::string::npos) << broken.warnings[0];
   // More beams than a scanner may have: the defaults stay, and the warning says so.
-  UrdfModel wide;
-  ASSERT_TRUE(parse(
-      base +
-          R"(<gazebo reference="base_footprint"><sensor type="ray" name="s"><ray><scan><horizontal><samples>200000</samples><min_angle>-1</min_angle><max_angle>1</max_angle></horizontal></scan></ray><plugin name="p" filename="libgazebo_ros_laser.so"/></sensor></gazebo></robot>)",
-      "xy", false, &wide, &error))
-      << error;
+  const UrdfModel wide = parseWithLaser(
+      base,
+      R"(<ray><scan><horizontal><samples>200000</samples><min_angle>-1</min_angle><max_angle>1</max_angle></horizontal></scan></ray><plugin name="p" filename="libgazebo_ros_laser.so"/>)");
   ASSERT_EQ(wide.scene.devices.size(), 1u);
   EXPECT_EQ(wide.scene.devices[0].laser.angleMin, LaserDef().angleMin);
   ASSERT_EQ(wide.warnings.size(), 1u);
