@@ -24,7 +24,8 @@ namespace impulse2d {
 //      ///// still /////
 void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies) {
   const Vec2 none(0.0, 0.0), marked(2.0, 2.0);  // pushes are unit vectors
-  std::fill(crushed_.begin(), crushed_.end(), 0);
+  for (const int slot : crushedSlots_) crushed_[static_cast<size_t>(slot)] = 0;  // last step's
+  crushedSlots_.clear();
   for (const Contact& contact : contacts) {
     const Manifold& m = contact.manifold;
     bool overlapping = false;
@@ -42,12 +43,15 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
     Vec2& first = pushOfSlot_[static_cast<size_t>(slot)];
     if (first == none) {
       first = push;
+      pushedSlots_.push_back(slot);
     } else if (first != marked && first.dot(push) < -0.5) {
       first = marked;
       crushed_[static_cast<size_t>(slot)] = 1;
+      crushedSlots_.push_back(slot);
     }
   }
-  std::fill(pushOfSlot_.begin(), pushOfSlot_.end(), none);
+  for (const int slot : pushedSlots_) pushOfSlot_[static_cast<size_t>(slot)] = none;
+  pushedSlots_.clear();
 }
 
 bool ContactSolver::pressesCrushed(const Contact& contact, const SolverBodies& bodies) const {

@@ -88,9 +88,10 @@ class ContactSolver {
   bool pressesCrushed(const Contact& contact, const SolverBodies& bodies) const;
 
   std::vector<ContactConstraint> constraints_;
-  std::vector<ContactConstraintExtra> extras_;  // by constraint
-  std::vector<Vec2> pushOfSlot_;                // findCrushed's scratch: the first push seen
-  std::vector<char> crushed_;                   // by slot, this step (baumgarte)
+  std::vector<ContactConstraintExtra> extras_;   // by constraint
+  std::vector<Vec2> pushOfSlot_;                 // findCrushed's scratch: the first push seen
+  std::vector<char> crushed_;                    // by slot, this step (baumgarte)
+  std::vector<int> pushedSlots_, crushedSlots_;  // the slots set in each, to clear only them
 };
 
 }  // namespace impulse2d
