@@ -48,8 +48,11 @@ void WorldImpl::wakeJointedSleepers() {
   const StageClock clock(stage(&StepProfile::sleep));
   std::vector<int>& stack = scratch.wakeStack;
   stack.clear();
-  for (const int i : movableSlots) {
-    if (!jointsOfBody[i].empty() && isMoving(bodies.items[i])) stack.push_back(i);
+  for (size_t j = 0; j < joints.items.size(); ++j) {  // by joint: a step's cost follows them
+    if (!joints.alive[j]) continue;
+    for (const int slot : {joints.items[j].bodyA, joints.items[j].bodyB}) {
+      if (isMoving(bodies.items[slot])) stack.push_back(slot);
+    }
   }
   while (!stack.empty()) {
     const int slot = stack.back();
