@@ -124,10 +124,9 @@ struct StepScratch {
   // its first push out this step.
   std::vector<DeepStatic> deepStatic;
   std::vector<Vec2> clusterPush;
-  // Sleeping (island_sleep.cpp), by movable place: the islands' union-find links (and the bodies
-  // wakeJointedSleepers has still to go on from), whether a
+  // Sleeping (island_sleep.cpp). By movable place: the islands' union-find links, whether a
   // moving kinematic body holds the body; by island root: whether a body is awake, how long all
-  // have been still.
+  // have been still. wakeStack: the bodies wakeJointedSleepers has still to go on from.
   std::vector<int> islandParent, wakeStack;
   std::vector<uint8_t> islandHeld, islandAwake;
   std::vector<double> islandStillFor;

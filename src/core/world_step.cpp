@@ -21,7 +21,7 @@ void World::step() {
     w.updateBroadPhase();      // 1. refit the fat boxes of bodies that left them
     w.findNewContacts();       // 2. newly overlapping pairs become arbiters
     w.updateContacts();        // 3. narrow phase; keep the impulses of matching contact ids
-    w.wakeJointedSleepers();   //    what is jointed to a moving body moves with it
+    w.wakeJointedSleepers();   //    sleepers jointed to a moving body wake to move with it
     if (usesSubsteps(w.def.solver)) {
       w.solveSubsteps(dt);  // 4-7 in sub-steps (world_substeps.cpp)
     } else {
