@@ -128,7 +128,7 @@ bool isRounded(const BenchShape& shape);
 /// and the v3_ scenes (to Box2D's own debug sizes) so the whole set runs in seconds.
 std::vector<SceneSpec> makeScenes(bool quick);
 
-/// Box2D v3.1.1's seven benchmark scenes (bench_scenes_v3.cpp).
+/// Box2D v3.1.1's seven benchmark scenes and master's washer and compounds (bench_scenes_v3.cpp).
 std::vector<SceneSpec> makeV3Scenes(bool quick);
 
 }  // namespace impulse2d_bench

@@ -1,5 +1,6 @@
-// Box2D v3.1.1's benchmark scenes (shared/benchmarks.c, its benchmark app's step counts), built as
-// the release build builds them; `quick` takes Box2D's debug sizes and a tenth of the steps.
+// Box2D v3.1.1's benchmark scenes and two of master's (shared/benchmarks.c, its benchmark app's
+// step counts), built as the release build builds them; `quick` takes Box2D's debug sizes and a
+// tenth of the steps.
 // Geometry Box2D has and impulse2d has not is described as Box2D has it (capsules, rounded
 // polygons: BenchShape), or by its closest equivalent, each noted where it is built and in
 // docs/benchmarks.md: segments and chains as thin static boxes whose face is the segment.
@@ -328,6 +329,111 @@ SceneSpec tumbler(bool quick) {
   return scene;
 }
 
+// CreateWasher (master): a drum of 36 wall segments 16-18 m out, each a tenth of its arc longer at
+// both ends, and four paddles 14-16 m out, turned at 25 degrees/s about (0, 10), holding a grid of
+// 0.2 m boxes. Master's drum is kinematic; the bench has no kinematic bodies, so a dynamic drum
+// (density 50) driven by a motor against an anchor stands in for it, as its own code offers and
+// as v3_tumbler does.
+SceneSpec washer(bool quick) {
+  SceneSpec scene = v3Scene("washer", SceneKind::Contained, quick ? 50 : 500);
+  BenchBody ground;
+  ground.isStatic = true;
+  const int groundIndex = add(scene, ground);
+  const Vec2 center(0.0, 10.0);
+  BenchBody drum;
+  drum.position = center;
+  const double r0 = 14.0, r1 = 16.0, r2 = 18.0, step = kPi / 18.0;
+  auto quad = [](double inner, double outer, double from, double to) {
+    BenchShape shape;  // counter-clockwise: out along `from`, round the outer arc, back in
+    shape.kind = BenchShape::Kind::Polygon;
+    shape.radius = 0.0;
+    shape.vertices = {
+        inner * Vec2(std::cos(from), std::sin(from)), outer * Vec2(std::cos(from), std::sin(from)),
+        outer * Vec2(std::cos(to), std::sin(to)), inner * Vec2(std::cos(to), std::sin(to))};
+    shape.density = 50.0;
+    return shape;
+  };
+  for (int i = 0; i < 36; ++i) {
+    drum.shapes.push_back(quad(r1, r2, i * step - 0.1 * step, (i + 1) * step + 0.1 * step));
+    if (i % 9 == 0) drum.shapes.push_back(quad(r0, r1, i * step, (i + 1) * step));
+  }
+  centreOnMass(&drum);  // at its centre to round-off: the walls and paddles are symmetric
+  const int drumIndex = add(scene, drum);
+  BenchJoint motor = pin(groundIndex, drumIndex, center);
+  motor.enableMotor = true;
+  motor.motorSpeed = (kPi / 180.0) * 25.0;
+  motor.maxMotorTorque = 1e8;
+  scene.joints.push_back(motor);
+  scene.container.kind = Container::Kind::Disc;
+  scene.container.center = center;
+  scene.container.radius = r1;
+
+  const int gridCount = quick ? 20 : 90;
+  const double a = 0.1;
+  double y = -1.1 * a * gridCount + 10.0;
+  for (int i = 0; i < gridCount; ++i) {
+    double x = -1.1 * a * gridCount;
+    for (int j = 0; j < gridCount; ++j) {
+      add(scene, body(Vec2(x, y), false, box(a, a)));
+      x += 2.1 * a;
+    }
+    y += 2.1 * a;
+  }
+  return scene;
+}
+
+// CreateCompounds (master, from its samples' barrel): 3,000 bodies of two overlapping triangles
+// each (friction 0.5) dropped in columns into a box 80 m wide with 100 m walls. Master's ground
+// is one body of 281 boxes and a segment 80 m below; here the boxes are five static bodies (a
+// body holds at most 64 shapes) and the segment a 2 cm static box.
+SceneSpec compounds(bool quick) {
+  SceneSpec scene = v3Scene("compounds", SceneKind::Contained, quick ? 50 : 500);
+  auto groundBody = [&](std::vector<BenchShape> shapes) {
+    BenchBody ground;
+    ground.isStatic = true;
+    ground.shapes = std::move(shapes);
+    add(scene, ground);
+  };
+  std::vector<BenchShape> floor, left, right;
+  for (int i = 0; i < 81; ++i) floor.push_back(box(0.55, 0.5, Vec2(-40.0 + i, 0.0)));
+  for (int i = 0; i < 100; ++i) {
+    left.push_back(box(0.5, 0.55, Vec2(-40.0, 1.0 + i)));
+    right.push_back(box(0.5, 0.55, Vec2(40.0, 1.0 + i)));
+  }
+  for (const std::vector<BenchShape>* row : {&floor, &left, &right}) {
+    const size_t half = row->size() / 2;
+    groundBody({row->begin(), row->begin() + static_cast<std::ptrdiff_t>(half)});
+    groundBody({row->begin() + static_cast<std::ptrdiff_t>(half), row->end()});
+  }
+  add(scene, body(Vec2(0.0, -80.0), true, box(800.0, 0.01)));
+  scene.container.kind = Container::Kind::Box;
+  scene.container.lower = Vec2(-40.0, 0.0);
+  scene.container.upper = Vec2(40.0, 400.0);
+
+  BenchShape leftTriangle, rightTriangle;
+  leftTriangle.kind = rightTriangle.kind = BenchShape::Kind::Polygon;
+  leftTriangle.radius = rightTriangle.radius = 0.0;
+  leftTriangle.vertices = {Vec2(-1.0, 0.0), Vec2(0.5, 1.0), Vec2(0.0, 2.0)};
+  rightTriangle.vertices = {Vec2(1.0, 0.0), Vec2(0.0, 2.0), Vec2(-0.5, 1.0)};
+  leftTriangle.friction = rightTriangle.friction = 0.5;
+  const int columnCount = quick ? 10 : 20, rowCount = quick ? 40 : 150;
+  const double shift = 2.0, extraY = 0.25, centerX = shift * columnCount / 2.0 - 1.0;
+  const double centerY = 1.15 / 2.0, yStart = 5.0;
+  double side = 0.25;
+  for (int i = 0; i < columnCount; ++i) {
+    const double x = i * shift - centerX;
+    for (int j = 0; j < rowCount; ++j) {
+      BenchBody compound =
+          body(Vec2(x + side, j * (shift + extraY) + centerY + yStart), false, leftTriangle);
+      compound.shapes.push_back(rightTriangle);
+      centreOnMass(&compound);  // every engine then reports the same point (metrics.cpp)
+      side = -side;
+      add(scene, compound);
+    }
+  }
+  return scene;
+}
+
 }  // namespace
 
 std::vector<SceneSpec> makeV3Scenes(bool quick) {
@@ -339,6 +445,8 @@ std::vector<SceneSpec> makeV3Scenes(bool quick) {
   scenes.push_back(smash(quick));
   scenes.push_back(spinner(quick));
   scenes.push_back(tumbler(quick));
+  scenes.push_back(washer(quick));
+  scenes.push_back(compounds(quick));
   return scenes;
 }
 

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Times Box2D v3's seven benchmark scenes (v3_*) for impulse2d and Box2D v3 at 1 and 2 threads,
-# alternately (each scene's rows round robin, --repeats times), and writes the CSV and the markdown
-# table of docs/benchmarks.md's v3 section. It only runs impulse2d_bench, which must have been
-# built with IMPULSE2D_BENCH_BOX2D_V3_DIR pointing at a v3 build (docs/benchmarks.md); it never
-# builds v3.
+# Times Box2D v3's benchmark scenes (v3_*: v3.1.1's seven, master's washer and compounds) for
+# impulse2d and Box2D v3 at 1 and 2 threads, alternately (each scene's rows round robin, --repeats
+# times), and writes the CSV and the markdown table of docs/benchmarks.md's v3 section. It only
+# runs impulse2d_bench, which must have been built with IMPULSE2D_BENCH_BOX2D_V3_DIR pointing at
+# a v3 build (docs/benchmarks.md); it never builds v3.
 #
 #   scripts/bench_v3.sh [--bench PATH] [--csv FILE] [--repeats N] [--threads 1,2]
 #                       [--solvers substep,default] [-- ARGS...]
