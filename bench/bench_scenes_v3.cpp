@@ -384,8 +384,9 @@ SceneSpec washer(bool quick) {
 
 // CreateCompounds (master, from its samples' barrel): 3,000 bodies of two overlapping triangles
 // each (friction 0.5) dropped in columns into a box 80 m wide with 100 m walls. Master's ground
-// is one body of 281 boxes and a segment 80 m below; here the boxes are five static bodies (a
-// body holds at most 64 shapes) and the segment a 2 cm static box.
+// is one body of 281 boxes and a segment 80 m below; here the boxes are six static bodies of
+// at most 50 (a body holds at most 64 shapes: the floor and each wall in halves) and the segment
+// a 2 cm static box.
 SceneSpec compounds(bool quick) {
   SceneSpec scene = v3Scene("compounds", SceneKind::Contained, quick ? 50 : 500);
   auto groundBody = [&](std::vector<BenchShape> shapes) {
