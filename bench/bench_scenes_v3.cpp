@@ -62,6 +62,16 @@ BenchJoint pin(int a, int b, const Vec2& anchor) {
   return joint;
 }
 
+// The motor that turns the tumbler's and the washer's drum about `anchor`: 25 degrees/s, with
+// all the torque it needs.
+BenchJoint drumMotor(int ground, int drum, const Vec2& anchor) {
+  BenchJoint motor = pin(ground, drum, anchor);
+  motor.enableMotor = true;
+  motor.motorSpeed = (kPi / 180.0) * 25.0;
+  motor.maxMotorTorque = 1e8;
+  return motor;
+}
+
 // Boxes of half-width `extent` in rows of base .. 1, as CreateLargePyramid and
 // CreateSmallPyramid place them: row i at y = (2i + 1) extent + baseY, its first box at
 // x = (i + 1) extent + left.
@@ -306,11 +316,7 @@ SceneSpec tumbler(bool quick) {
     drum.shapes.push_back(wall);
   }
   const int drumIndex = add(scene, drum);
-  BenchJoint motor = pin(groundIndex, drumIndex, Vec2(0.0, 10.0));
-  motor.enableMotor = true;
-  motor.motorSpeed = (kPi / 180.0) * 25.0;
-  motor.maxMotorTorque = 1e8;
-  scene.joints.push_back(motor);
+  scene.joints.push_back(drumMotor(groundIndex, drumIndex, Vec2(0.0, 10.0)));
   scene.container.kind = Container::Kind::BodyBox;
   scene.container.body = drumIndex;
   scene.container.lower = Vec2(-9.5, -9.5);
@@ -359,11 +365,7 @@ SceneSpec washer(bool quick) {
   }
   centreOnMass(&drum);  // at its centre to round-off: the walls and paddles are symmetric
   const int drumIndex = add(scene, drum);
-  BenchJoint motor = pin(groundIndex, drumIndex, center);
-  motor.enableMotor = true;
-  motor.motorSpeed = (kPi / 180.0) * 25.0;
-  motor.maxMotorTorque = 1e8;
-  scene.joints.push_back(motor);
+  scene.joints.push_back(drumMotor(groundIndex, drumIndex, center));
   scene.container.kind = Container::Kind::Disc;
   scene.container.center = center;
   scene.container.radius = r1;

@@ -24,8 +24,7 @@ bool isTouching(const Contact& contact) {
 }
 
 bool isMovingKinematic(const Body& body) {
-  return body.type == BodyType::Kinematic &&
-         (body.linearVelocity.squaredNorm() > 0.0 || body.angularVelocity != 0.0);
+  return body.type == BodyType::Kinematic && isMoving(body);
 }
 
 // The root of place k's island; halves the path on the way, so chains stay short.

@@ -212,14 +212,7 @@ TEST(Weld, SoftWeldSwingsAtItsFrequency) {
 
 // --- distance ---
 
-JointDef distanceDef(BodyId a, BodyId b, const Vec2& anchor) {
-  JointDef joint;
-  joint.type = JointType::Distance;
-  joint.bodyA = a;
-  joint.bodyB = b;
-  joint.anchor = anchor;
-  return joint;
-}
+using test::distanceDef;
 
 TEST(Distance, RigidRodKeepsItsLengthWhileSwinging) {
   // With the Baumgarte solver the rod grows (v dt)^2 / (2 L) per step (a chord instead of an

@@ -38,6 +38,16 @@ inline BodyId addCircle(World& world, const std::string& name, const Vec2& posit
   return world.createBody(def);
 }
 
+/// A rigid distance joint from `anchor` on A to B's origin, its length as they stand.
+inline JointDef distanceDef(BodyId a, BodyId b, const Vec2& anchor) {
+  JointDef joint;
+  joint.type = JointType::Distance;
+  joint.bodyA = a;
+  joint.bodyB = b;
+  joint.anchor = anchor;
+  return joint;
+}
+
 /// Collision shapes centred on their body's origin.
 inline Shape boxShape(double w, double h) {
   Shape s;

@@ -165,12 +165,7 @@ TEST(Sleep, AJointLinksBodiesThatDoNotTouch) {
   test::addGround(world);
   const BodyId left = addBox(world, "left", Vec2(-2, 0.5), 1, 1, BodyType::Dynamic);
   const BodyId right = addBox(world, "right", Vec2(2, 0.5), 1, 1, BodyType::Dynamic);
-  JointDef rope;
-  rope.type = JointType::Distance;
-  rope.bodyA = left;
-  rope.bodyB = right;
-  rope.anchor = world.body(left).center;
-  ASSERT_TRUE(world.createJoint(rope).valid());
+  ASSERT_TRUE(world.createJoint(test::distanceDef(left, right, world.body(left).center)).valid());
   stepSeconds(world, 3.0);
   ASSERT_FALSE(world.body(left).awake);
   ASSERT_FALSE(world.body(right).awake);
