@@ -4,6 +4,7 @@
 
 #include "contact.hpp"
 #include "contact_bundles.hpp"
+#include "contact_key_set.hpp"
 #include "contact_solver.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
@@ -19,7 +20,6 @@
 #include <functional>
 #include <string>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -166,8 +166,8 @@ struct WorldImpl {
   std::vector<int> movedProxies;
   std::vector<char> proxyMoved;  // by proxy id
 
-  std::vector<Contact> contacts;             // solved in this order
-  std::unordered_set<uint64_t> contactKeys;  // the keys of `contacts`: a pair is found once
+  std::vector<Contact> contacts;  // solved in this order
+  ContactKeySet contactKeys;      // the keys of `contacts`: a pair is found once
 
   // The one-pass solvers (baumgarte, ngs) work on these, not on `bodies`.
   SolverBodies solverBodies;

@@ -114,7 +114,7 @@ void WorldImpl::findNewContacts() {
       std::swap(shapeA, shapeB);
     }
     const uint64_t key = contactKey(slotA, shapeA, slotB, shapeB);
-    if (contactKeys.count(key) || !shouldCollide(slotA, slotB)) continue;
+    if (contactKeys.contains(key) || !shouldCollide(slotA, slotB)) continue;
     Contact contact;
     contact.key = key;
     contact.bodyA = slotA;
