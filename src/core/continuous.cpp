@@ -69,10 +69,11 @@ void WorldImpl::solveContinuous() {
                   .united(computeAabb(body.shapes[i], body.xf));
     }
 
-    double impact = 1.0;
-    tree.query(swept.inflated(def.linearSlop), [&](int proxy) {
-      const int slot = proxySlot(tree.userData(proxy));
-      const int shapeIndex = proxyShape(tree.userData(proxy));
+    double impact = 1.0;  // the earliest over the candidates: the same in any order
+    const DynamicTree& candidates = body.bullet ? tree : staticTree;
+    candidates.query(swept.inflated(def.linearSlop), [&](int proxy) {
+      const int slot = proxySlot(candidates.userData(proxy));
+      const int shapeIndex = proxyShape(candidates.userData(proxy));
       if (slot == fast.slot) return;
       const Body& other = bodies.items[slot];
       if (other.type != BodyType::Static && !body.bullet) return;

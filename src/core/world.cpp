@@ -47,12 +47,17 @@ void WorldImpl::createProxies(int slot) {
   const Body& body = bodies.items[slot];
   BodyBookkeeping& book = bookkeeping[slot];
   book.proxies.clear();
+  book.staticProxies.clear();
   book.proxyXf = body.xf;
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
     const int proxy = tree.createProxy(box, proxyData(slot, static_cast<int>(i)));
     book.proxies.push_back(proxy);
     markMoved(proxy);
+    if (body.type == BodyType::Static) {
+      book.staticProxies.push_back(
+          staticTree.createProxy(box, proxyData(slot, static_cast<int>(i))));
+    }
   }
 }
 
@@ -66,6 +71,8 @@ void WorldImpl::destroyProxies(int slot) {
     tree.destroyProxy(proxy);
   }
   proxies.clear();
+  for (const int proxy : bookkeeping[slot].staticProxies) staticTree.destroyProxy(proxy);
+  bookkeeping[slot].staticProxies.clear();
 }
 
 void WorldImpl::updateProxies(int slot, bool forced) {
@@ -78,6 +85,9 @@ void WorldImpl::updateProxies(int slot, bool forced) {
     if (!forced && tree.fatAabb(proxy).contains(box)) continue;
     tree.moveProxy(proxy, box.inflated(kAabbMargin));
     markMoved(proxy);
+    if (!book.staticProxies.empty()) {
+      staticTree.moveProxy(book.staticProxies[i], box.inflated(kAabbMargin));
+    }
   }
 }
 

@@ -141,6 +141,25 @@ TEST(Continuous, FastBoxLandsOnThinGroundAndADynamicTargetStopsABullet) {
   EXPECT_GT(space.body(plank).linearVelocity.x(), 1.0) << "the plank was hit";
 }
 
+// Continuous collision sweeps bodies that are not bullets against the static shapes only, kept
+// in a tree of their own: it must follow a static body that is moved, and forget one destroyed.
+TEST(Continuous, FastBoxSeesAStaticBodyWhereItWasMovedAndNotOneDestroyed) {
+  World world;
+  // 5 cm ground made far away and moved under a 0.5 m box arriving at 100 m/s (1 m a step), and
+  // a second ground across its path, destroyed before it gets there.
+  const BodyId ground = test::addBox(world, "ground", Vec2(100, 100), 20.0, 0.05, BodyType::Static);
+  const BodyId gone = test::addBox(world, "gone", Vec2(0, 10.0), 20.0, 0.05, BodyType::Static);
+  const BodyId box = test::addBox(world, "box", Vec2(0, 20.0), 0.5, 0.5, BodyType::Dynamic);
+  ASSERT_TRUE(world.setTransform(ground, Vec2(0, -0.025), 0.0));
+  ASSERT_TRUE(world.destroyBody(gone));
+  world.setVelocity(box, Vec2(0.0, -100.0), 0.0);
+  for (int i = 0; i < 300; ++i) {
+    world.step();
+    ASSERT_GE(world.body(box).xf.p.y(), -1e-9) << "step " << i;
+  }
+  EXPECT_NEAR(world.body(box).xf.p.y(), 0.25, 0.01) << "it came to rest on the moved ground";
+}
+
 // Rods up to 2 m long, falling at 20-200 m/s and spinning at up to 200 rad/s (a tip at 200 m/s,
 // turning 2 rad in a step) onto 5 cm ground: a corner hit may leave one end in contact while the
 // rest swings round, which the continuous pass must stop before it passes the ground's middle.
