@@ -27,19 +27,25 @@ class DynamicTree {
   /// Calls visit(proxy) for every leaf whose fat box overlaps `box`.
   template <class Visit>
   void query(const Aabb& box, Visit&& visit) const {
+    query(box, stack_, visit);
+  }
+
+  /// The same on the caller's stack, so that threads may query at once.
+  template <class Visit>
+  void query(const Aabb& box, std::vector<int>& stack, Visit&& visit) const {
     if (root_ == kNull) return;
-    stack_.clear();
-    stack_.push_back(root_);
-    while (!stack_.empty()) {
-      const int id = stack_.back();
-      stack_.pop_back();
+    stack.clear();
+    stack.push_back(root_);
+    while (!stack.empty()) {
+      const int id = stack.back();
+      stack.pop_back();
       const Node& node = nodes_[id];
       if (!node.aabb.overlaps(box)) continue;
       if (node.isLeaf()) {
         visit(id);
       } else {
-        stack_.push_back(node.child1);
-        stack_.push_back(node.child2);
+        stack.push_back(node.child1);
+        stack.push_back(node.child2);
       }
     }
   }

@@ -31,6 +31,9 @@ constexpr double kAabbMargin = 0.1;
 /// Parallel stages take contacts, and bodies, in blocks of this many.
 constexpr int kContactsPerBlock = 256;
 constexpr int kBodiesPerBlock = 256;
+/// The pair search takes moved proxies in blocks of this many: a query costs as much as
+/// refitting a few dozen bodies.
+constexpr int kProxiesPerBlock = 64;
 
 /// Slot storage: stable indices, a generation per slot to reject stale handles, and a free list
 /// so that create/destroy churn reuses memory instead of growing.
@@ -106,13 +109,21 @@ struct DeepStatic {
   Vec2 n;  // the contact's normal when the step began, out of the static body
 };
 
+/// Two shapes whose fat boxes began to overlap, and which may touch (world_step.cpp).
+struct NewPair {
+  uint64_t key;               // contactKey
+  int slotA, shapeA, proxyA;  // slotA < slotB
+  int slotB, shapeB, proxyB;
+};
+
 /// The buffers the step's stages reuse, so that a warm step allocates nothing: scratch, each
 /// stage's own, meaningless between steps.
 struct StepScratch {
-  // Broad phase (world_step.cpp): by block, the proxies that left their fat boxes; the pairs
-  // and contacts found.
+  // Broad phase (world_step.cpp): by block, the proxies that left their fat boxes and the new
+  // pairs their queries found; by worker, a tree query's stack; the contacts made.
   std::vector<std::vector<std::pair<int, Aabb>>> refits;
-  std::vector<std::pair<int, int>> newPairs;
+  std::vector<std::vector<NewPair>> newPairs;
+  std::vector<std::vector<int>> queryStacks;
   std::vector<Contact> newContacts;
   // Both solver paths: the joints the warm-start guard looks at.
   std::vector<Joint*> guardedJoints;
