@@ -152,8 +152,8 @@ void WorldImpl::findNewContacts() {
       fresh.push_back(contact);
     }
   }
-  // The tree's shape depends on history; sorting by key
-  // makes the solve order depend only on which pairs exist.
+  // The tree's shape depends on history; sorting by key makes the solve order depend only on
+  // which pairs exist.
   std::sort(fresh.begin(), fresh.end(),
             [](const Contact& x, const Contact& y) { return x.key < y.key; });
   contacts.insert(contacts.end(), fresh.begin(), fresh.end());
