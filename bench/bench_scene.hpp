@@ -31,15 +31,21 @@ struct BenchShape {
 
 struct BenchBody {
   bool isStatic = false;
+  /// Moves at `velocity` and `angularVelocity` whatever touches it (Box2D's kinematic body); it
+  /// has no mass of its own and is driven, so the error figures leave it out as a static one.
+  bool isKinematic = false;
   Vec2 position = Vec2::Zero();  ///< m, the body origin, which is its centre of mass
   double angle = 0.0;
   Vec2 velocity = Vec2::Zero();  ///< m/s at the start
+  double angularVelocity = 0.0;  ///< rad/s at the start
   double linearDamping = 0.0;    ///< 1/s
   bool awake = true;             ///< false: created asleep (scenes that sleep)
   double sleepThreshold = 0.0;   ///< m/s, Box2D v3's per-body threshold; 0: the engine's own
   bool canSleep = true;          ///< false: never sleeps (Box2D's enableSleep / allowSleep)
   int group = -1;                ///< >= 0: created and destroyed by the scene's events
   std::vector<BenchShape> shapes;
+  /// Static or kinematic: no mass, nothing the solver moves.
+  bool isDriven() const { return isStatic || isKinematic; }
 };
 
 /// A revolute joint at a world point; bodies index SceneSpec::bodies. Angles as in Box2D v3: the

@@ -72,16 +72,17 @@ class Box2dAdapter : public GroupedAdapter<b2Body*> {
   b2Body* createBody(int index) override {
     const BenchBody& body = scene_->bodies[index];
     b2BodyDef def;
-    def.type = body.isStatic ? b2_staticBody : b2_dynamicBody;
+    def.type = body.isStatic ? b2_staticBody : body.isKinematic ? b2_kinematicBody : b2_dynamicBody;
     def.position = toB2(body.position);
     def.angle = static_cast<float>(body.angle);
     def.linearVelocity = toB2(body.velocity);
+    def.angularVelocity = static_cast<float>(body.angularVelocity);
     def.linearDamping = static_cast<float>(body.linearDamping);
     def.awake = body.awake;
     def.allowSleep = body.canSleep;
     b2Body* b = world_->CreateBody(&def);
     for (const BenchShape& shape : body.shapes) addFixture(b, shape);
-    if (!body.isStatic) {
+    if (!body.isDriven()) {
       double mass = 0.0, inertia = 0.0;
       nominalMass(body, &mass, &inertia);
       b2MassData data;
@@ -151,11 +152,20 @@ EngineInfo box2dEngine() {
   info.defaults.positionIterations = 3;
   info.make = [] { return std::make_unique<Box2dAdapter>(); };
   info.refuses = [](const SceneSpec& scene, const EngineSettings& settings) -> std::string {
+    bool movingKinematic = false;
+    int dynamicBodies = 0;
     for (const BenchBody& body : scene.bodies) {
       for (const BenchShape& shape : body.shapes) {
         if (!fitsFilter(shape.filter))
           return "a collision filter needs more than Box2D 2.4's 16 bits";
       }
+      movingKinematic |= body.isKinematic && (body.velocity.norm() > 0.0 || body.angularVelocity);
+      dynamicBodies += body.isDriven() ? 0 : 1;
+    }
+    // Box2D 2.4 sub-steps each fast body's time of impact against kinematic ones: the washer's
+    // 8,100 boxes in its turning drum did not finish 500 steps in 400 s (2026-11-26).
+    if (movingKinematic && dynamicBodies > 1000) {
+      return "Box2D 2.4's time of impact against a moving kinematic body takes minutes here";
     }
     return singleThreadOnly("Box2D 2.4", settings);
   };

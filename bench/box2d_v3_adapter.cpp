@@ -136,17 +136,18 @@ class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
   b2BodyId createBody(int index) override {
     const BenchBody& body = scene_->bodies[index];
     b2BodyDef def = b2DefaultBodyDef();
-    def.type = body.isStatic ? b2_staticBody : b2_dynamicBody;
+    def.type = body.isStatic ? b2_staticBody : body.isKinematic ? b2_kinematicBody : b2_dynamicBody;
     def.position = toB2(body.position);
     def.rotation = b2MakeRot(static_cast<float>(body.angle));
     def.linearVelocity = toB2(body.velocity);
+    def.angularVelocity = static_cast<float>(body.angularVelocity);
     def.linearDamping = static_cast<float>(body.linearDamping);
     def.isAwake = body.awake;
     def.enableSleep = body.canSleep;
     if (body.sleepThreshold > 0.0) def.sleepThreshold = static_cast<float>(body.sleepThreshold);
     const b2BodyId id = b2CreateBody(world_, &def);
     for (const BenchShape& shape : body.shapes) addShape(id, shape);
-    if (!body.isStatic) {
+    if (!body.isDriven()) {
       double mass = 0.0, inertia = 0.0;
       nominalMass(body, &mass, &inertia);
       b2Body_SetMassData(id, {static_cast<float>(mass), {0.0f, 0.0f}, static_cast<float>(inertia)});

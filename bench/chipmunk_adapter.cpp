@@ -78,6 +78,10 @@ class ChipmunkAdapter : public GroupedAdapter<cpBody*> {
     cpBody* b = nullptr;
     if (body.isStatic) {
       b = cpBodyNewStatic();
+    } else if (body.isKinematic) {
+      b = cpBodyNewKinematic();
+      cpBodySetVelocity(b, toCp(body.velocity));
+      cpBodySetAngularVelocity(b, body.angularVelocity);
     } else {
       double mass = 0.0, inertia = 0.0;
       nominalMass(body, &mass, &inertia);
@@ -104,7 +108,7 @@ class ChipmunkAdapter : public GroupedAdapter<cpBody*> {
       cpSpaceAddShape(space_, s);
       shapes_[index].push_back(s);
     }
-    if (!body.isStatic && !body.awake && scene_->sleep) cpBodySleep(b);
+    if (!body.isDriven() && !body.awake && scene_->sleep) cpBodySleep(b);
     return b;
   }
   void destroyJoint(int index) override {
@@ -165,8 +169,8 @@ class ChipmunkAdapter : public GroupedAdapter<cpBody*> {
       double massA = 0.0, inertiaA = 0.0, massB = 0.0, inertiaB = 0.0;
       nominalMass(scene_->bodies[joint.bodyA], &massA, &inertiaA);
       nominalMass(scene_->bodies[joint.bodyB], &massB, &inertiaB);
-      const double invSum = (scene_->bodies[joint.bodyA].isStatic ? 0.0 : 1.0 / inertiaA) +
-                            (scene_->bodies[joint.bodyB].isStatic ? 0.0 : 1.0 / inertiaB);
+      const double invSum = (scene_->bodies[joint.bodyA].isDriven() ? 0.0 : 1.0 / inertiaA) +
+                            (scene_->bodies[joint.bodyB].isDriven() ? 0.0 : 1.0 / inertiaB);
       const double inertia = 1.0 / invSum, omega = 2.0 * impulse2d::kPi * joint.springHertz;
       parts.push_back(cpDampedRotarySpringNew(a, b, joint.referenceAngle, inertia * omega * omega,
                                               2.0 * joint.springDampingRatio * inertia * omega));

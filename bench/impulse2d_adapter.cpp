@@ -62,10 +62,13 @@ class Impulse2dAdapter : public GroupedAdapter<BodyId> {
   BodyId createBody(int index) override {
     const BenchBody& body = scene_->bodies[index];
     BodyDef def;
-    def.type = body.isStatic ? BodyType::Static : BodyType::Dynamic;
+    def.type = body.isStatic      ? BodyType::Static
+               : body.isKinematic ? BodyType::Kinematic
+                                  : BodyType::Dynamic;
     def.position = body.position;
     def.angle = body.angle;
     def.linearVelocity = body.velocity;
+    def.angularVelocity = body.angularVelocity;
     def.linearDamping = body.linearDamping;
     def.awake = body.awake;
     bool approximated = false;
@@ -81,7 +84,7 @@ class Impulse2dAdapter : public GroupedAdapter<BodyId> {
       far.offset = Vec2(1e5, 1e5);
       def.shapes.push_back(far);
     }
-    if (approximated && !body.isStatic) {
+    if (approximated && !body.isDriven()) {
       // A rounded shape's polygon outline is a little smaller: give it the true shape's mass.
       nominalMass(body, &def.mass, &def.inertia);
       def.useLocalCenter = true;

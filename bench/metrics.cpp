@@ -40,7 +40,7 @@ ErrorMeter::ErrorMeter(const SceneSpec& scene) : scene_(scene) {
     initial_[i].angle = body.angle;
     initial_[i].velocity = body.velocity;
     initial_[i].alive = body.group < 0;
-    if (body.isStatic) continue;
+    if (body.isDriven()) continue;
     nominalMass(body, &mass_[i], &inertia_[i]);
     if (body.group >= 0) continue;
     totalMass += mass_[i];
@@ -54,6 +54,10 @@ ErrorMeter::ErrorMeter(const SceneSpec& scene) : scene_(scene) {
   startEnergy_ = energy(initial_);
   startMomentum_ = momentum(initial_);
   figures_.energyMeaningful = scene.events.empty();
+  for (const BenchBody& body : scene.bodies) {  // a moving kinematic body does work
+    figures_.energyMeaningful &=
+        !(body.isKinematic && (body.velocity.norm() > 0.0 || body.angularVelocity != 0.0));
+  }
   for (const BenchJoint& joint : scene.joints) {
     figures_.energyMeaningful &= !joint.enableMotor;  // a motor adds energy; friction takes it
     const BodyState& a = initial_[joint.bodyA];
@@ -128,7 +132,7 @@ void ErrorMeter::sample(const std::vector<BodyState>& states) {
     for (size_t m = k + 1; m < order_.size() && boxes_[order_[m]].lower.x() <= boxes_[i].upper.x();
          ++m) {
       const int j = order_[m];
-      if (scene_.bodies[i].isStatic && scene_.bodies[j].isStatic) continue;
+      if (scene_.bodies[i].isDriven() && scene_.bodies[j].isDriven()) continue;
       if (!boxes_[i].overlaps(boxes_[j])) continue;
       const std::pair<int, int> pair(std::min(i, j), std::max(i, j));
       if (std::binary_search(jointPairs_.begin(), jointPairs_.end(), pair)) continue;
@@ -176,7 +180,7 @@ ErrorFigures ErrorMeter::finish(const std::vector<BodyState>& finalStates) {
   out.momentumDrift =
       startMomentum > 0.0 ? (momentum(finalStates) - startMomentum_).norm() / startMomentum : 0.0;
   for (size_t i = 0; i < finalStates.size(); ++i) {
-    if (scene_.bodies[i].isStatic || !finalStates[i].alive) continue;
+    if (scene_.bodies[i].isDriven() || !finalStates[i].alive) continue;
     const Vec2 move = finalStates[i].position - initial_[i].position;
     out.driftMax = std::max(out.driftMax, std::abs(move.x()));
     out.sinkMax = std::max(out.sinkMax, -move.y());
