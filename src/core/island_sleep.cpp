@@ -45,6 +45,17 @@ int rootOf(std::vector<int>& parent, int k) {
 void WorldImpl::wakeJointedSleepers() {
   if (joints.count() == 0) return;
   const StageClock clock(stage(&StepProfile::sleep));
+  // With no body asleep there is nothing to wake: the common case of a busy world, checked
+  // before walking every joint (v3_joint_grid's 20,000 joints cost 2.8 ms a step for nothing).
+  bool anyAsleep = false;
+  for (const int slot : movableSlots) {
+    const Body& body = bodies.items[slot];
+    if (body.type == BodyType::Dynamic && !body.awake) {
+      anyAsleep = true;
+      break;
+    }
+  }
+  if (!anyAsleep) return;
   std::vector<int>& stack = scratch.wakeStack;
   stack.clear();
   for (size_t j = 0; j < joints.items.size(); ++j) {  // by joint: a step's cost follows them
