@@ -215,6 +215,19 @@ SolverBody SubstepBodies::view(int slot) const {
   return e;
 }
 
+SolverBody SubstepBodies::velocityView(int slot) const {
+  SolverBody e;  // a body that does not move this step: no velocity, infinite mass
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0) return e;
+  const BodyState& s = states_[entry];
+  const BodySim& sim = sims_[entry];
+  e.linearVelocity = Vec2(s.vx, s.vy);
+  e.angularVelocity = s.w;
+  e.invMass = sim.invMass;
+  e.invInertia = sim.invInertia;
+  return e;
+}
+
 void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
   const int entry = entryOfSlot_[slot];
   if (entry < 0 || entry >= dynamicCount_) return;

@@ -100,6 +100,9 @@ class SubstepBodies {
   /// A joint's scalar view of a body: its pose now, velocities and masses. Bodies that do not
   /// move this step read as static (no velocity, infinite mass).
   SolverBody view(int slot) const;
+  /// The same with only the velocities and masses, for the passes that read no pose: the pose
+  /// fields stay at their defaults (v3_joint_grid spent a fifth of its joint passes on poses).
+  SolverBody velocityView(int slot) const;
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
   /// `pose` (position passes).
   void store(int slot, const SolverBody& view, bool pose);

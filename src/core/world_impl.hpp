@@ -263,13 +263,18 @@ struct WorldImpl {
   using JointOp = std::function<void(Joint&, SolverBody&, SolverBody&, int worker)>;
   using BundleOp =
       std::function<void(const BundlePass&, int begin, int end, bool oneByOne, int worker)>;
-  /// Runs op on solverJoints[index] and writes back what it changed of its bodies (the poses
-  /// too when `pose`).
-  void onJoint(int index, int worker, const JointOp& op, bool pose);
+  /// What a pass's joint op reads and writes of the joint's bodies.
+  enum class JointAccess {
+    Velocities,  // reads and writes velocities only (velocityView)
+    ReadPoses,   // reads the poses too, writes velocities
+    WritePoses,  // reads and writes poses and velocities (the position passes)
+  };
+  /// Runs op on solverJoints[index] and writes back what it changed of its bodies.
+  void onJoint(int index, int worker, const JointOp& op, JointAccess access);
   /// One pass over every colour's joints and bundles, then the overflow's; either op may be
   /// empty.
   void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
-                  bool pose);
+                  JointAccess access);
   // solveSubsteps' stages, in order.
   /// The active joints and the contacts coloured together, the joints copied colour by colour.
   void colorConstraints();

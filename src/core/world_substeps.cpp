@@ -42,16 +42,20 @@ int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock
 
 }  // namespace
 
-void WorldImpl::onJoint(int index, int worker, const JointOp& op, bool pose) {
+void WorldImpl::onJoint(int index, int worker, const JointOp& op, JointAccess access) {
   Joint& joint = solverJoints[index];
-  SolverBody a = substepBodies.view(joint.bodyA), b = substepBodies.view(joint.bodyB);
+  const SubstepBodies& sb = substepBodies;
+  const bool velocities = access == JointAccess::Velocities;
+  SolverBody a = velocities ? sb.velocityView(joint.bodyA) : sb.view(joint.bodyA);
+  SolverBody b = velocities ? sb.velocityView(joint.bodyB) : sb.view(joint.bodyB);
   op(joint, a, b, worker);
+  const bool pose = access == JointAccess::WritePoses;
   substepBodies.store(joint.bodyA, a, pose);
   substepBodies.store(joint.bodyB, b, pose);
 }
 
 void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
-                           bool pose) {
+                           JointAccess access) {
   SubstepBodies& sb = substepBodies;
   const int colors = contactBundles.colorCount();
   // The joints first, colour after colour and then their overflow, and the contacts after them:
@@ -65,11 +69,12 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
                         [&](int block, int worker) {
                           const int from = firstJoint + block * kJointsPerBlock;
                           for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
-                            onJoint(k, worker, jointOp, pose);
+                            onJoint(k, worker, jointOp, access);
                           }
                         });
     }
-    for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) onJoint(k, 0, jointOp, pose);
+    for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k)
+      onJoint(k, 0, jointOp, access);
   }
   if (!bundleOp) return;
   auto sink = [&](int worker) {
@@ -140,11 +145,13 @@ void WorldImpl::solveSubsteps(double dt) {
       sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
     });
     laps.lap(&StepProfile::integrate);
-    overColors(prepareAndWarmStart, kernel(warmStartBundles), pass, false);
+    const bool prepares = substep == 0 || !preparedByRelax;
+    overColors(prepareAndWarmStart, kernel(warmStartBundles), pass,
+               prepares ? JointAccess::ReadPoses : JointAccess::Velocities);
     laps.lap(&StepProfile::warmStart);
     pass.useBias = soft;
     pass.relax = false;
-    overColors(solveJoints, kernel(solveBundles), pass, false);
+    overColors(solveJoints, kernel(solveBundles), pass, JointAccess::Velocities);
     laps.lap(&StepProfile::solve);
 
     stepWorkers.stage(bodyBlocks, [&](int block, int) {
@@ -158,11 +165,11 @@ void WorldImpl::solveSubsteps(double dt) {
     // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
     pass.useBias = false;
     pass.relax = true;
-    overColors(prepareAndRelax, kernel(solveBundles), pass, false);
+    overColors(prepareAndRelax, kernel(solveBundles), pass, JointAccess::ReadPoses);
     laps.lap(&StepProfile::relax);
   }
   pass.relax = false;
-  overColors(nullptr, kernel(restituteBundles), pass, false);
+  overColors(nullptr, kernel(restituteBundles), pass, JointAccess::Velocities);
   storeBundles();
   laps.lap(&StepProfile::restitution);
   if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
@@ -271,7 +278,7 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
       double& deepest = scratch.workerDeepest[static_cast<size_t>(worker)];
       deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
     };
-    overColors(jointPositions, contactPositions, pass, true);
+    overColors(jointPositions, contactPositions, pass, JointAccess::WritePoses);
     bool jointsOk = true;
     double deepest = 0.0;
     for (size_t w = 0; w < workers; ++w) {
