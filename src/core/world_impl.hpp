@@ -120,11 +120,11 @@ struct NewPair {
 /// stage's own, meaningless between steps.
 struct StepScratch {
   // Broad phase (world_step.cpp): by block, the proxies that left their fat boxes and the new
-  // pairs their queries found; by worker, a tree query's stack; the contacts made.
+  // pairs their queries found; by worker, a tree query's stack; all new pairs, merged.
   std::vector<std::vector<std::pair<int, Aabb>>> refits;
   std::vector<std::vector<NewPair>> newPairs;
   std::vector<std::vector<int>> queryStacks;
-  std::vector<Contact> newContacts;
+  std::vector<NewPair> freshPairs;
   // Both solver paths: the joints the warm-start guard looks at.
   std::vector<Joint*> guardedJoints;
   // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.

@@ -132,31 +132,31 @@ void WorldImpl::findNewContacts() {
   });
   // proxyMoved stays set until the narrow phase has checked the contacts of the moved proxies.
 
-  std::vector<Contact>& fresh = scratch.newContacts;
+  // The tree's shape depends on history; sorting by key makes the solve order depend only on
+  // which pairs exist. The small pairs are sorted, and each contact is made once, in place.
+  std::vector<NewPair>& fresh = scratch.freshPairs;
   fresh.clear();
   for (const std::vector<NewPair>& block : scratch.newPairs) {
     for (const NewPair& pair : block) {
-      if (!contactKeys.insert(pair.key)) continue;  // each pair is met once; kept as a guard
-      Contact contact;
-      contact.key = pair.key;
-      contact.bodyA = pair.slotA;
-      contact.bodyB = pair.slotB;
-      contact.shapeA = pair.shapeA;
-      contact.shapeB = pair.shapeB;
-      contact.proxyA = pair.proxyA;
-      contact.proxyB = pair.proxyB;
-      const Shape& sa = bodies.items[pair.slotA].shapes[pair.shapeA];
-      const Shape& sb = bodies.items[pair.slotB].shapes[pair.shapeB];
-      contact.friction = mixFriction(sa.friction, sb.friction);
-      contact.restitution = mixRestitution(sa.restitution, sb.restitution);
-      fresh.push_back(contact);
+      if (contactKeys.insert(pair.key)) fresh.push_back(pair);  // each pair is met once; a guard
     }
   }
-  // The tree's shape depends on history; sorting by key makes the solve order depend only on
-  // which pairs exist.
   std::sort(fresh.begin(), fresh.end(),
-            [](const Contact& x, const Contact& y) { return x.key < y.key; });
-  contacts.insert(contacts.end(), fresh.begin(), fresh.end());
+            [](const NewPair& x, const NewPair& y) { return x.key < y.key; });
+  for (const NewPair& pair : fresh) {
+    Contact& contact = contacts.emplace_back();
+    contact.key = pair.key;
+    contact.bodyA = pair.slotA;
+    contact.bodyB = pair.slotB;
+    contact.shapeA = pair.shapeA;
+    contact.shapeB = pair.shapeB;
+    contact.proxyA = pair.proxyA;
+    contact.proxyB = pair.proxyB;
+    const Shape& sa = bodies.items[pair.slotA].shapes[pair.shapeA];
+    const Shape& sb = bodies.items[pair.slotB].shapes[pair.shapeB];
+    contact.friction = mixFriction(sa.friction, sb.friction);
+    contact.restitution = mixRestitution(sa.restitution, sb.restitution);
+  }
 }
 
 // The narrow phase waits on memory: a contact's two bodies and their shapes lie anywhere. So
