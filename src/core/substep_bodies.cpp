@@ -198,11 +198,7 @@ SolverBody SubstepBodies::view(int slot) const {
   const BodyState& s = states_[entry];
   const BodySim& sim = sims_[entry];
   const BodyStart& start = starts_[entry];
-  SolverBody e;
-  e.linearVelocity = Vec2(s.vx, s.vy);
-  e.angularVelocity = s.w;
-  e.invMass = sim.invMass;
-  e.invInertia = sim.invInertia;
+  SolverBody e = velocityView(slot);
   e.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
   e.angle = start.angle0 + s.turned;
   e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
