@@ -251,6 +251,14 @@ RunResult runOnce(const Job& job, int fixedSteps, bool measure) {
   size_t nextEvent = 0;
   for (int s = 1; s <= result.steps; ++s) {
     const auto start = std::chrono::steady_clock::now();
+    if (scene.steering.body >= 0) {  // before the step, timed with it, as v3's app steers
+      const Steering& steer = scene.steering;
+      const double dt = job.settings.timeStep;
+      const Vec2 at = adapter->position(steer.body);
+      const Vec2 target(steer.amplitude * std::sin(steer.rate * (s - 1) * dt),
+                        scene.bodies[steer.body].position.y());
+      adapter->setVelocity(steer.body, (target - at) / dt);
+    }
     // The scene's events happen before their step, timed with it (as in Box2D v3's app).
     for (; nextEvent < scene.events.size() && scene.events[nextEvent].step == s - 1; ++nextEvent) {
       const SceneEvent& event = scene.events[nextEvent];

@@ -90,6 +90,15 @@ struct Container {
   int body = -1;  ///< BodyBox: the container body (it is not counted itself)
 };
 
+/// A kinematic body steered along x: before step s (0-based) its velocity is set to carry its
+/// centre in that step to (amplitude sin(rate s dt), y0), y0 where the scene puts it, as Box2D
+/// v3's b2Body_SetTargetTransform does for master's junkyard.
+struct Steering {
+  int body = -1;           ///< -1: none
+  double amplitude = 0.0;  ///< m
+  double rate = 0.0;       ///< rad/s
+};
+
 struct SceneSpec {
   std::string name;
   SceneKind kind = SceneKind::Resting;
@@ -106,6 +115,17 @@ struct SceneSpec {
   double tolerance = 0.05;  ///< drift (Resting), joint gap (Jointed, m) or momentum (Impact)
   Container container;      ///< Contained
   bool scaling = false;     ///< a member of the scaling series (timed, fewer figures of interest)
+  Steering steering;
+  /// Whether a kinematic body moves: it does work on what it touches.
+  bool hasMovingKinematic() const {
+    if (steering.body >= 0) return true;
+    for (const BenchBody& body : bodies) {
+      if (body.isKinematic && (body.velocity.norm() > 0.0 || body.angularVelocity != 0.0)) {
+        return true;
+      }
+    }
+    return false;
+  }
 };
 
 /// Mass (kg), rotational inertia about the centroid (kg m^2) and centroid (body frame) of one
@@ -134,7 +154,8 @@ bool isRounded(const BenchShape& shape);
 /// and the v3_ scenes (to Box2D's own debug sizes) so the whole set runs in seconds.
 std::vector<SceneSpec> makeScenes(bool quick);
 
-/// Box2D v3.1.1's seven benchmark scenes and master's washer and compounds (bench_scenes_v3.cpp).
+/// Box2D v3.1.1's seven benchmark scenes and master's washer, compounds and junkyard
+/// (bench_scenes_v3.cpp).
 std::vector<SceneSpec> makeV3Scenes(bool quick);
 
 }  // namespace impulse2d_bench

@@ -1,11 +1,14 @@
-// Box2D v3.1.1's benchmark scenes and two of master's (shared/benchmarks.c, its benchmark app's
+// Box2D v3.1.1's benchmark scenes and three of master's (shared/benchmarks.c, its benchmark app's
 // step counts), built as the release build builds them; `quick` takes Box2D's debug sizes and a
 // tenth of the steps.
 // Geometry Box2D has and impulse2d has not is described as Box2D has it (capsules, rounded
 // polygons: BenchShape), or by its closest equivalent, each noted where it is built and in
 // docs/benchmarks.md: segments and chains as thin static boxes whose face is the segment.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "bench_human.hpp"
 #include "bench_scene.hpp"
@@ -379,30 +382,36 @@ SceneSpec washer(bool quick) {
   return scene;
 }
 
-// CreateCompounds (master, from its samples' barrel): 3,000 bodies of two overlapping triangles
-// each (friction 0.5) dropped in columns into a box 80 m wide with 100 m walls. Master's ground
-// is one body of 281 boxes and a segment 80 m below; here the boxes are six static bodies of
-// at most 50 (a body holds at most 64 shapes: the floor and each wall in halves) and the segment
-// a 2 cm static box.
-SceneSpec compounds(bool quick) {
-  SceneSpec scene = v3Scene("compounds", SceneKind::Contained, quick ? 50 : 500);
-  auto groundBody = [&](std::vector<BenchShape> shapes) {
-    BenchBody ground;
-    ground.isStatic = true;
-    ground.shapes = std::move(shapes);
-    add(scene, ground);
-  };
+// Master's compounds and junkyard stand on one static body of a few hundred boxes: a floor of
+// `floorCount` boxes 1 m apart from x = -halfWidth and two walls of `wallCount` at +-halfWidth.
+// impulse2d takes at most 64 shapes a body, so each row goes into static bodies of at most 50
+// boxes, split evenly (compounds: the floor and each wall in halves).
+void addBoxGround(SceneSpec& scene, double halfWidth, int floorCount, int wallCount) {
   std::vector<BenchShape> floor, left, right;
-  for (int i = 0; i < 81; ++i) floor.push_back(box(0.55, 0.5, Vec2(-40.0 + i, 0.0)));
-  for (int i = 0; i < 100; ++i) {
-    left.push_back(box(0.5, 0.55, Vec2(-40.0, 1.0 + i)));
-    right.push_back(box(0.5, 0.55, Vec2(40.0, 1.0 + i)));
+  for (int i = 0; i < floorCount; ++i) floor.push_back(box(0.55, 0.5, Vec2(-halfWidth + i, 0.0)));
+  for (int i = 0; i < wallCount; ++i) {
+    left.push_back(box(0.5, 0.55, Vec2(-halfWidth, 1.0 + i)));
+    right.push_back(box(0.5, 0.55, Vec2(halfWidth, 1.0 + i)));
   }
   for (const std::vector<BenchShape>* row : {&floor, &left, &right}) {
-    const size_t half = row->size() / 2;
-    groundBody({row->begin(), row->begin() + static_cast<std::ptrdiff_t>(half)});
-    groundBody({row->begin() + static_cast<std::ptrdiff_t>(half), row->end()});
+    const size_t count = row->size(), chunks = (count + 49) / 50;
+    for (size_t k = 0; k < chunks; ++k) {
+      BenchBody ground;
+      ground.isStatic = true;
+      ground.shapes.assign(row->begin() + static_cast<std::ptrdiff_t>(k * count / chunks),
+                           row->begin() + static_cast<std::ptrdiff_t>((k + 1) * count / chunks));
+      add(scene, ground);
+    }
   }
+}
+
+// CreateCompounds (master, from its samples' barrel): 3,000 bodies of two overlapping triangles
+// each (friction 0.5) dropped in columns into a box 80 m wide with 100 m walls. Master's ground
+// is one body of 281 boxes and a segment 80 m below; here the boxes are six static bodies
+// (addBoxGround) and the segment a 2 cm static box.
+SceneSpec compounds(bool quick) {
+  SceneSpec scene = v3Scene("compounds", SceneKind::Contained, quick ? 50 : 500);
+  addBoxGround(scene, 40.0, 81, 100);
   add(scene, body(Vec2(0.0, -80.0), true, box(800.0, 0.01)));
   scene.container.kind = Container::Kind::Box;
   scene.container.lower = Vec2(-40.0, 0.0);
@@ -432,6 +441,51 @@ SceneSpec compounds(bool quick) {
   return scene;
 }
 
+// CreateJunkyard (master): 8,000 pentagons (a hull of 5 points of the Fibonacci spiral on a
+// circle of 0.25 m) dropped in 200 columns of 40 into a box 160 m wide with 50 m walls, and a
+// kinematic 4 x 8 m pusher steered along the floor to x = 60 sin(0.2 t). Master's ground is one
+// body of 261 boxes: here seven static bodies (addBoxGround). Master's pusher has its box 4 m
+// above its origin; here the body is at the box's centre, steered the same way.
+SceneSpec junkyard(bool quick) {
+  SceneSpec scene = v3Scene("junkyard", SceneKind::Contained, quick ? 100 : 800);
+  addBoxGround(scene, 80.0, 161, 50);
+  scene.container.kind = Container::Kind::Box;
+  scene.container.lower = Vec2(-80.0, 0.0);
+  scene.container.upper = Vec2(80.0, 400.0);
+
+  const double radius = 0.25, phi = kPi * (std::sqrt(5.0) - 1.0);
+  std::vector<std::pair<double, Vec2>> points;  // by angle: the hull, counter-clockwise
+  for (int i = 0; i < 5; ++i) {
+    const double theta = phi * i;
+    const Vec2 p = radius * Vec2(std::cos(theta), std::sin(theta));
+    points.emplace_back(std::atan2(p.y(), p.x()), p);
+  }
+  std::sort(points.begin(), points.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  BenchShape pentagon;
+  pentagon.kind = BenchShape::Kind::Polygon;
+  pentagon.radius = 0.0;
+  for (const auto& [angle, p] : points) pentagon.vertices.push_back(p);
+
+  const int columnCount = 200, rowCount = quick ? 2 : 40;
+  double side = -0.1;
+  for (int i = 0; i < columnCount; ++i) {
+    const double x = 1.5 * (2.0 * i - columnCount) * radius;
+    for (int j = 0; j < rowCount; ++j) {
+      BenchBody piece = body(Vec2(x + side, 4.0 * j * radius + 15.0), false, pentagon);
+      centreOnMass(&piece);  // every engine then reports the same point (metrics.cpp)
+      side = -side;
+      add(scene, piece);
+    }
+  }
+  BenchBody pusher = body(Vec2(0.0, 4.0), false, box(2.0, 4.0));
+  pusher.isKinematic = true;
+  scene.steering.body = add(scene, pusher);
+  scene.steering.amplitude = 60.0;
+  scene.steering.rate = 0.2;
+  return scene;
+}
+
 }  // namespace
 
 std::vector<SceneSpec> makeV3Scenes(bool quick) {
@@ -445,6 +499,7 @@ std::vector<SceneSpec> makeV3Scenes(bool quick) {
   scenes.push_back(tumbler(quick));
   scenes.push_back(washer(quick));
   scenes.push_back(compounds(quick));
+  scenes.push_back(junkyard(quick));
   return scenes;
 }
 

@@ -95,6 +95,17 @@ class Box2dV3Adapter : public GroupedAdapter<b2BodyId> {
     b2World_Step(world_, static_cast<float>(settings_.timeStep), settings_.velocityIterations);
     if (tasks_) tasks_->reset();
   }
+  Vec2 position(int body) const override {
+#if defined(IMPULSE2D_BOX2D_V3_MASTER)
+    const auto p = b2Body_GetWorldCenter(bodies_[body]);
+#else
+    const b2Vec2 p = b2Body_GetWorldCenterOfMass(bodies_[body]);
+#endif
+    return Vec2(p.x, p.y);
+  }
+  void setVelocity(int body, const Vec2& velocity) override {
+    b2Body_SetLinearVelocity(bodies_[body], toB2(velocity));
+  }
   void read(std::vector<BodyState>* states) const override {
     states->resize(bodies_.size());
     for (size_t i = 0; i < bodies_.size(); ++i) {

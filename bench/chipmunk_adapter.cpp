@@ -41,6 +41,13 @@ class ChipmunkAdapter : public GroupedAdapter<cpBody*> {
     createGroup(-1);
   }
   void step() override { cpSpaceStep(space_, timeStep_); }
+  Vec2 position(int body) const override {
+    const cpVect p = cpBodyGetPosition(bodies_[body]);
+    return Vec2(p.x, p.y);
+  }
+  void setVelocity(int body, const Vec2& velocity) override {
+    cpBodySetVelocity(bodies_[body], toCp(velocity));
+  }
   void read(std::vector<BodyState>* states) const override {
     states->resize(bodies_.size());
     for (size_t i = 0; i < bodies_.size(); ++i) {

@@ -44,6 +44,10 @@ class EngineAdapter {
   virtual void read(std::vector<BodyState>* states) const = 0;
   /// Contact points the engine holds as touching now.
   virtual size_t contactCount() const = 0;
+  /// One body's position as read() reports it, and a new linear velocity for it (a kinematic
+  /// body's steering, SceneSpec::steering).
+  virtual Vec2 position(int body) const = 0;
+  virtual void setVelocity(int body, const Vec2& velocity) = 0;
 };
 
 struct EngineInfo {

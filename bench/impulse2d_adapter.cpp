@@ -57,6 +57,10 @@ class Impulse2dAdapter : public GroupedAdapter<BodyId> {
     }
   }
   size_t contactCount() const override { return world_->contactCount(); }
+  Vec2 position(int body) const override { return world_->body(bodies_[body]).center; }
+  void setVelocity(int body, const Vec2& velocity) override {
+    world_->setVelocity(bodies_[body], velocity, 0.0);
+  }
 
  private:
   BodyId createBody(int index) override {

@@ -54,10 +54,7 @@ ErrorMeter::ErrorMeter(const SceneSpec& scene) : scene_(scene) {
   startEnergy_ = energy(initial_);
   startMomentum_ = momentum(initial_);
   figures_.energyMeaningful = scene.events.empty();
-  for (const BenchBody& body : scene.bodies) {  // a moving kinematic body does work
-    figures_.energyMeaningful &=
-        !(body.isKinematic && (body.velocity.norm() > 0.0 || body.angularVelocity != 0.0));
-  }
+  figures_.energyMeaningful &= !scene.hasMovingKinematic();  // it does work
   for (const BenchJoint& joint : scene.joints) {
     figures_.energyMeaningful &= !joint.enableMotor;  // a motor adds energy; friction takes it
     const BodyState& a = initial_[joint.bodyA];

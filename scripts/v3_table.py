@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The markdown table of Box2D v3's scenes (v3.1.1's seven, master's washer and compounds) from
-one impulse2d_bench run (scripts/bench_v3.sh).
+"""The markdown table of Box2D v3's scenes (v3.1.1's seven, master's washer, compounds and
+junkyard) from one impulse2d_bench run (scripts/bench_v3.sh).
 
     /usr/bin/python3 scripts/v3_table.py bench_v3.csv [--out table.md]
 
@@ -16,7 +16,7 @@ import math
 import sys
 
 SCENES = ["v3_joint_grid", "v3_large_pyramid", "v3_many_pyramids", "v3_rain", "v3_smash",
-          "v3_spinner", "v3_tumbler", "v3_washer", "v3_compounds"]
+          "v3_spinner", "v3_tumbler", "v3_washer", "v3_compounds", "v3_junkyard"]
 
 
 def num(row, key):

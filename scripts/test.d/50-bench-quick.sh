@@ -26,7 +26,7 @@ HEADER = ("engine,solver,scene,sweep,time_step,velocity_iterations,position_iter
 SCENES = ["pyramid100", "pyramid20", "stack20", "mass_ratio", "bridge20", "joint_grid",
           "falling_shapes", "scaling_105", "scaling_528", "v3_joint_grid", "v3_large_pyramid",
           "v3_many_pyramids", "v3_rain", "v3_smash", "v3_spinner", "v3_tumbler", "v3_washer",
-          "v3_compounds"]
+          "v3_compounds", "v3_junkyard"]
 ENGINES = ["impulse2d", "box2d", "chipmunk"]
 
 check("runs within 120 s and exits 0", status == 0, "exit status %d" % status)
