@@ -124,8 +124,9 @@ void WorldImpl::solveSubsteps(double dt) {
   const Feedback firstFeedback = soft ? jointSpring : rigid;
   int substep = 0;
   const bool preparedByRelax = !soft && def.warmStarting;
+  bool prepares = true;  // this sub-step's warm start prepares the joints' rows (reads poses)
   const JointOp prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
-    if (substep == 0 || !preparedByRelax) prepareJoint(j, a, b, def, firstFeedback, h);
+    if (prepares) prepareJoint(j, a, b, def, firstFeedback, h);
     warmStartJoint(j, a, b, motionLimits);
   };
   const JointOp solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
@@ -145,7 +146,7 @@ void WorldImpl::solveSubsteps(double dt) {
       sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
     });
     laps.lap(&StepProfile::integrate);
-    const bool prepares = substep == 0 || !preparedByRelax;
+    prepares = substep == 0 || !preparedByRelax;
     overColors(prepareAndWarmStart, kernel(warmStartBundles), pass,
                prepares ? JointAccess::ReadPoses : JointAccess::Velocities);
     laps.lap(&StepProfile::warmStart);
