@@ -140,4 +140,65 @@ class SubstepBodies {
   ClusterRows clusterRows_;  // the welded clusters' members, by entry
 };
 
+// Inline: the joint passes call these twice per joint visit.
+inline SolverBody SubstepBodies::view(int slot) const {
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0) {
+    SolverBody e = solverView((*bodies_)[slot]);
+    e.linearVelocity.setZero();
+    e.angularVelocity = e.invMass = e.invInertia = 0.0;
+    return e;
+  }
+  const BodyState& s = states_[entry];
+  const BodySim& sim = sims_[entry];
+  const BodyStart& start = starts_[entry];
+  SolverBody e = velocityView(slot);
+  e.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
+  e.angle = start.angle0 + s.turned;
+  e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
+  e.localCenter = start.localCenter;
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {  // its cluster, seen from it
+    e.angle = m->angle0 + s.turned;
+    e.q = m->q0 * Rot::fromCosSin(s.qc, s.qs);
+    e.localCenter = m->viewLocalCenter;
+  }
+  return e;
+}
+
+inline SolverBody SubstepBodies::velocityView(int slot) const {
+  SolverBody e;  // a body that does not move this step: no velocity, infinite mass
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0) return e;
+  const BodyState& s = states_[entry];
+  const BodySim& sim = sims_[entry];
+  e.linearVelocity = Vec2(s.vx, s.vy);
+  e.angularVelocity = s.w;
+  e.invMass = sim.invMass;
+  e.invInertia = sim.invInertia;
+  return e;
+}
+
+inline void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0 || entry >= dynamicCount_) return;
+  BodyState& s = states_[entry];
+  s.vx = view.linearVelocity.x();
+  s.vy = view.linearVelocity.y();
+  s.w = view.angularVelocity;
+  if (!pose) return;
+  const BodySim& sim = sims_[entry];
+  double angle0 = starts_[entry].angle0;
+  Rot q0 = starts_[entry].q0;
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {
+    angle0 = m->angle0;
+    q0 = m->q0;
+  }
+  s.dx = view.center.x() - sim.center0.x();
+  s.dy = view.center.y() - sim.center0.y();
+  s.turned = view.angle - angle0;
+  const Rot q = q0.inverseTimes(view.q);
+  s.qc = q.c;
+  s.qs = q.s;
+}
+
 }  // namespace impulse2d

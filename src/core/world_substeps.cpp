@@ -24,6 +24,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <type_traits>
 
 namespace impulse2d {
 namespace {
@@ -42,39 +44,42 @@ int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock
 
 }  // namespace
 
-void WorldImpl::onJoint(int index, int worker, const JointOp& op, JointAccess access) {
+template <WorldImpl::JointAccess access, class JointOp>
+void WorldImpl::onJoint(int index, int worker, const JointOp& op) {
   Joint& joint = solverJoints[index];
   const SubstepBodies& sb = substepBodies;
-  const bool velocities = access == JointAccess::Velocities;
+  constexpr bool velocities = access == JointAccess::Velocities;
   SolverBody a = velocities ? sb.velocityView(joint.bodyA) : sb.view(joint.bodyA);
   SolverBody b = velocities ? sb.velocityView(joint.bodyB) : sb.view(joint.bodyB);
   op(joint, a, b, worker);
-  const bool pose = access == JointAccess::WritePoses;
+  constexpr bool pose = access == JointAccess::WritePoses;
   substepBodies.store(joint.bodyA, a, pose);
   substepBodies.store(joint.bodyB, b, pose);
 }
 
-void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
-                           JointAccess access) {
+template <WorldImpl::JointAccess access, class JointOp>
+void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
+                           const BundlePass& pass) {
   SubstepBodies& sb = substepBodies;
   const int colors = contactBundles.colorCount();
   // The joints first, colour after colour and then their overflow, and the contacts after them:
   // the contacts' last word keeps jointed bodies out of the ground. Interleaving a colour's
   // joints with its contacts instead let ragdolls landing at 28 m/s (v3_rain) open their joints
   // by up to 38 cm and sink 12 cm, where this order keeps them within a few centimetres.
-  if (jointOp && !solverJoints.empty()) {  // no stage per colour for a world without joints
-    for (int color = 0; color < colors; ++color) {
-      const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
-      stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock),
-                        [&](int block, int worker) {
-                          const int from = firstJoint + block * kJointsPerBlock;
-                          for (int k = from; k < std::min(endJoint, from + kJointsPerBlock); ++k) {
-                            onJoint(k, worker, jointOp, access);
-                          }
-                        });
+  if constexpr (!std::is_same_v<JointOp, std::nullptr_t>) {
+    if (!solverJoints.empty()) {  // no stage per colour for a world without joints
+      for (int color = 0; color < colors; ++color) {
+        const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
+        stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock),
+                          [&](int block, int worker) {
+                            const int from = firstJoint + block * kJointsPerBlock;
+                            const int to = std::min(endJoint, from + kJointsPerBlock);
+                            for (int k = from; k < to; ++k) onJoint<access>(k, worker, jointOp);
+                          });
+      }
+      for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k)
+        onJoint<access>(k, 0, jointOp);
     }
-    for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k)
-      onJoint(k, 0, jointOp, access);
   }
   if (!bundleOp) return;
   auto sink = [&](int worker) {
@@ -125,14 +130,14 @@ void WorldImpl::solveSubsteps(double dt) {
   int substep = 0;
   const bool preparedByRelax = !soft && def.warmStarting;
   bool prepares = true;  // this sub-step's warm start prepares the joints' rows (reads poses)
-  const JointOp prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
+  const auto prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
     if (prepares) prepareJoint(j, a, b, def, firstFeedback, h);
     warmStartJoint(j, a, b, motionLimits);
   };
-  const JointOp solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
+  const auto solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
     solveJointVelocity(j, a, b, h);
   };
-  const JointOp prepareAndRelax = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
+  const auto prepareAndRelax = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
     prepareJoint(j, a, b, def, rigid, h);
     solveJointVelocity(j, a, b, h);
   };
@@ -147,12 +152,15 @@ void WorldImpl::solveSubsteps(double dt) {
     });
     laps.lap(&StepProfile::integrate);
     prepares = substep == 0 || !preparedByRelax;
-    overColors(prepareAndWarmStart, kernel(warmStartBundles), pass,
-               prepares ? JointAccess::ReadPoses : JointAccess::Velocities);
+    if (prepares) {
+      overColors<JointAccess::ReadPoses>(prepareAndWarmStart, kernel(warmStartBundles), pass);
+    } else {
+      overColors<JointAccess::Velocities>(prepareAndWarmStart, kernel(warmStartBundles), pass);
+    }
     laps.lap(&StepProfile::warmStart);
     pass.useBias = soft;
     pass.relax = false;
-    overColors(solveJoints, kernel(solveBundles), pass, JointAccess::Velocities);
+    overColors<JointAccess::Velocities>(solveJoints, kernel(solveBundles), pass);
     laps.lap(&StepProfile::solve);
 
     stepWorkers.stage(bodyBlocks, [&](int block, int) {
@@ -166,11 +174,11 @@ void WorldImpl::solveSubsteps(double dt) {
     // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
     pass.useBias = false;
     pass.relax = true;
-    overColors(prepareAndRelax, kernel(solveBundles), pass, JointAccess::ReadPoses);
+    overColors<JointAccess::ReadPoses>(prepareAndRelax, kernel(solveBundles), pass);
     laps.lap(&StepProfile::relax);
   }
   pass.relax = false;
-  overColors(nullptr, kernel(restituteBundles), pass, JointAccess::Velocities);
+  overColors<JointAccess::Velocities>(nullptr, kernel(restituteBundles), pass);
   storeBundles();
   laps.lap(&StepProfile::restitution);
   if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
@@ -270,7 +278,7 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     scratch.workerJointsOk.assign(workers, 1);
     scratch.workerDeepest.assign(workers, 0.0);
-    const JointOp jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
+    const auto jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
       if (!solveJointPosition(j, a, b, def))
         scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
     };
@@ -279,7 +287,7 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
       double& deepest = scratch.workerDeepest[static_cast<size_t>(worker)];
       deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
     };
-    overColors(jointPositions, contactPositions, pass, JointAccess::WritePoses);
+    overColors<JointAccess::WritePoses>(jointPositions, contactPositions, pass);
     bool jointsOk = true;
     double deepest = 0.0;
     for (size_t w = 0; w < workers; ++w) {
