@@ -6,22 +6,6 @@
 
 namespace impulse2d {
 
-Eigen::Matrix2d pointMassMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
-                                const Vec2& rB) {
-  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
-  Eigen::Matrix2d k;
-  k(0, 0) = mA + mB + iA * rA.y() * rA.y() + iB * rB.y() * rB.y();
-  k(0, 1) = -iA * rA.x() * rA.y() - iB * rB.x() * rB.y();
-  k(1, 0) = k(0, 1);
-  k(1, 1) = mA + mB + iA * rA.x() * rA.x() + iB * rB.x() * rB.x();
-  return k;
-}
-
-Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
-  const double det = k.determinant();
-  return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
-}
-
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB) {
   // Each row's error is clamped, but the correction that removes it is K^-1 times it, and an

@@ -34,14 +34,13 @@ struct JointParams {
 JointParams paramsOf(const JointDef& def);
 
 struct Joint {
-  JointId id;
-  JointParams params;          // the definition's numbers the solver reads
+  // First what every velocity pass of a revolute or weld joint reads (bodies, type and switches,
+  // the pair's rows, the feedback), in the first four of its nine cache lines: a pass over the
+  // 19,800 joints of v3_joint_grid reads them from L3, and spread over the struct they took a
+  // line more each.
   int bodyA = -1, bodyB = -1;  // slot indices
-  Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
-  double referenceAngle = 0.0;                                    // angle B - angle A at creation
-  Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
-  double restLength = 0.0;           // distance: the length the joint keeps (m)
-
+  JointId id;
+  JointParams params;  // the definition's numbers the solver reads
   // Accumulated impulses, kept across steps. Every type's limits are lowerImpulse and
   // upperImpulse (revolute: the angle; prismatic: the slide; distance: the length).
   //
@@ -49,18 +48,21 @@ struct Joint {
   // inverse and pairBias its target rates. Revolute and weld: the anchors' gap, x and y;
   // prismatic: across the rail and the angle.
   Vec2 pairImpulse = Vec2::Zero();
-  double motorImpulse = 0.0;
-  double lowerImpulse = 0.0, upperImpulse = 0.0;
-  double angularImpulse = 0.0;  // weld angle row
-  double lengthImpulse = 0.0;   // distance length row (rigid or spring)
-
   // Pre-step scratch.
   Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();           // from each centre of mass to the anchor
   Eigen::Matrix2d pairMass = Eigen::Matrix2d::Zero();  // the pair's (see pairImpulse)
   Vec2 pairBias = Vec2::Zero();
+  // The feedback of this pass for the equality rows and for each limit (a limit not yet reached
+  // is approached speculatively, which is always rigid).
+  Feedback feedback;
+  double motorImpulse = 0.0;
+  double lowerImpulse = 0.0, upperImpulse = 0.0;
+  double angularImpulse = 0.0;  // weld angle row
+  double lengthImpulse = 0.0;   // distance length row (rigid or spring)
   double axialMass = 0.0;
   double angle = 0.0;                       // current joint angle relative to the reference
   double lowerBias = 0.0, upperBias = 0.0;  // target rates of the limit constraints
+  Feedback lowerFeedback, upperFeedback;
   // Prismatic and distance: the axial row's direction (unit, world) and its lever arms
   // cross(r, axis) on each body; the prismatic also its perpendicular row's.
   Vec2 axis = Vec2::Zero(), normal = Vec2::Zero();
@@ -72,9 +74,12 @@ struct Joint {
   Eigen::Matrix3d blockMass = Eigen::Matrix3d::Zero();
   // Spring rows (weld angle, distance length): softened effective mass and the softness gamma.
   double springMass = 0.0, springGamma = 0.0;
-  // The feedback of this pass for the equality rows and for each limit (a limit not yet reached
-  // is approached speculatively, which is always rigid).
-  Feedback feedback, lowerFeedback, upperFeedback;
+
+  // The geometry, set at creation (read by the preparing passes and the position passes).
+  Vec2 localAnchorA = Vec2::Zero(), localAnchorB = Vec2::Zero();  // body frames (origin based)
+  double referenceAngle = 0.0;                                    // angle B - angle A at creation
+  Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
+  double restLength = 0.0;           // distance: the length the joint keeps (m)
 };
 
 /// Initialises the parameters, anchors and reference angle from a validated definition.
@@ -102,10 +107,22 @@ JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
 /// K = [mA + mB + iA rA.y^2 + iB rB.y^2,   -iA rA.x rA.y - iB rB.x rB.y ]
 ///     [-iA rA.x rA.y - iB rB.x rB.y,      mA + mB + iA rA.x^2 + iB rB.x^2]
 /// maps an impulse at a shared point to the change of the relative velocity there.
-Eigen::Matrix2d pointMassMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
-                                const Vec2& rB);
+/// (Inline, as safeInverse: every revolute and weld joint calls both several times a step.)
+inline Eigen::Matrix2d pointMassMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
+                                       const Vec2& rB) {
+  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
+  Eigen::Matrix2d k;
+  k(0, 0) = mA + mB + iA * rA.y() * rA.y() + iB * rB.y() * rB.y();
+  k(0, 1) = -iA * rA.x() * rA.y() - iB * rB.x() * rB.y();
+  k(1, 0) = k(0, 1);
+  k(1, 1) = mA + mB + iA * rA.x() * rA.x() + iB * rB.x() * rB.x();
+  return k;
+}
 /// The inverse, or zero when K is singular (two bodies that cannot move).
-Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k);
+inline Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
+  const double det = k.determinant();
+  return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
+}
 
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.

@@ -25,13 +25,16 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
 
   const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
   joint.pairBias = pointBias(gap, fb);
-  const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
-  joint.lowerBias =
-      limitBias(joint.angle - joint.params.lower, fb, dt, &joint.lowerFeedback, maxTurn);
-  joint.upperBias =
-      limitBias(joint.params.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
+  if (joint.params.enableLimit) {  // the limit rows are read only then
+    const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
+    joint.lowerBias =
+        limitBias(joint.angle - joint.params.lower, fb, dt, &joint.lowerFeedback, maxTurn);
+    joint.upperBias =
+        limitBias(joint.params.upper - joint.angle, fb, dt, &joint.upperFeedback, maxTurn);
+  } else {
+    joint.lowerImpulse = joint.upperImpulse = 0.0;
+  }
   if (!joint.params.enableMotor) joint.motorImpulse = 0.0;
-  if (!joint.params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
 
 void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
