@@ -92,7 +92,11 @@ void WorldImpl::updateProxies(int slot, bool forced) {
 }
 
 void WorldImpl::destroyContactsOf(int bodySlot) {
-  eraseContactsIf([&](const Contact& c) { return c.bodyA == bodySlot || c.bodyB == bodySlot; });
+  eraseContactsIf([&](const Contact& c) {
+    if (c.bodyA != bodySlot && c.bodyB != bodySlot) return false;
+    wakeBody(bodies.items[c.bodyA == bodySlot ? c.bodyB : c.bodyA]);
+    return true;
+  });
 }
 
 bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
@@ -237,10 +241,6 @@ bool World::destroyBody(BodyId id) {
   if (!isValid(id)) return false;
   const std::vector<int> attached = w.jointsOfBody[id.index];
   for (const int j : attached) destroyJoint(w.joints.items[j].id);
-  for (const Contact& contact : w.contacts) {
-    if (contact.bodyA == id.index) w.wakeBody(w.bodies.items[contact.bodyB]);
-    if (contact.bodyB == id.index) w.wakeBody(w.bodies.items[contact.bodyA]);
-  }
   w.destroyContactsOf(id.index);
   Body& body = w.bodies.items[id.index];
   if (body.type == BodyType::Static) w.staticBodiesChanged();

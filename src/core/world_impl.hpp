@@ -230,6 +230,8 @@ struct WorldImpl {
   }
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
   void updateProxies(int slot, bool forced);
+  /// Removes the contacts of the body in `bodySlot` and wakes the bodies they touched (one pass
+  /// over the contacts: v3_rain destroys hundreds of bodies at once).
   void destroyContactsOf(int bodySlot);
   /// Removes the contacts `pred` selects, keeping the others in order.
   template <class Pred>

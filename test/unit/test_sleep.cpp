@@ -63,6 +63,27 @@ TEST(Sleep, AFallingBodyWakesWhatItLandsOn) {
   EXPECT_NE(world.body(box).xf.p, before) << "the heavy ball's impact moves the box";
 }
 
+TEST(Sleep, DestroyingABodyWakesWhatItTouchedAndItFalls) {
+  World world;
+  test::addGround(world);
+  const BodyId bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  const BodyId top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
+  const BodyId aside = addBox(world, "aside", Vec2(5, 0.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  ASSERT_FALSE(world.body(top).awake);
+  ASSERT_FALSE(world.body(aside).awake);
+  ASSERT_TRUE(world.destroyBody(bottom));
+  EXPECT_TRUE(world.body(top).awake) << "it lay on the destroyed box";
+  EXPECT_FALSE(world.body(aside).awake) << "it touched nothing destroyed";
+  stepSeconds(world, 1.0);
+  // Resting on the ground now: its centre half a box above it, within the 5 mm slop.
+  EXPECT_NEAR(world.body(top).center.y(), 0.5, 0.005);
+  for (const ContactInfo& contact : world.contacts()) {
+    EXPECT_NE(contact.bodyA, bottom);
+    EXPECT_NE(contact.bodyB, bottom);
+  }
+}
+
 TEST(Sleep, TeleportingWakesAndSleepCanBeTurnedOff) {
   WorldDef def;
   def.enableSleep = false;
