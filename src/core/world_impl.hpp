@@ -6,6 +6,7 @@
 #include "contact_bundles.hpp"
 #include "contact_key_set.hpp"
 #include "contact_solver.hpp"
+#include "distance.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
 #include "solver_body.hpp"
@@ -125,6 +126,9 @@ struct StepScratch {
   std::vector<std::vector<NewPair>> newPairs;
   std::vector<std::vector<int>> queryStacks;
   std::vector<NewPair> freshPairs;
+  // Continuous collision (continuous.cpp): by fast body, the first impact of one that is not a
+  // bullet (found in parallel).
+  std::vector<double> fastImpacts;
   // Both solver paths: the joints the warm-start guard looks at.
   std::vector<Joint*> guardedJoints;
   // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.
@@ -338,6 +342,11 @@ struct WorldImpl {
   void pushOut(int slot, const Vec2& push, const Vec2& n);
   bool escapeSeam(const DeepStatic* begin, const DeepStatic* end);
   void solveContinuous();
+  /// The fast body's motion this step, from its start pose to where the solver left it.
+  Sweep sweepOf(const FastBody& fast) const;
+  /// The first time of impact (0-1) of that sweep with what the body must not pass through; a
+  /// tree query on `stack`.
+  double firstImpact(const FastBody& fast, std::vector<int>& stack) const;
   void wakeJointedSleepers();
   void updateSleep(double dt);
   void clearForces();
