@@ -126,6 +126,8 @@ struct StepScratch {
   std::vector<std::vector<NewPair>> newPairs;
   std::vector<std::vector<int>> queryStacks;
   std::vector<NewPair> freshPairs;
+  // Sub-steps' colouring (world_substeps.cpp): the active joints' slots, colour after colour.
+  std::vector<int> jointOrder;
   // Continuous collision (continuous.cpp): by fast body, the first impact of one that is not a
   // bullet (found in parallel).
   std::vector<double> fastImpacts;
@@ -287,6 +289,8 @@ struct WorldImpl {
   // solveSubsteps' stages, in order.
   /// The active joints and the contacts coloured together, the joints copied colour by colour.
   void colorConstraints();
+  /// The solved joints copied back to their slots.
+  void storeSolverJoints();
   /// The bundles' pass parameters for sub-steps of h seconds.
   BundlePass bundlePass(double h);
   /// The warm-start guard, then the contacts into their lanes.

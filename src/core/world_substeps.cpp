@@ -39,6 +39,8 @@ constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 // claiming a block costs little, small enough that the threads finish a colour together.
 constexpr int kBundlesPerBlock = 4;
 constexpr int kJointsPerBlock = 32;
+// Joints copied to and from their colours' order per block.
+constexpr int kJointsPerCopyBlock = 256;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
@@ -183,7 +185,7 @@ void WorldImpl::solveSubsteps(double dt) {
   laps.lap(&StepProfile::restitution);
   if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
   laps.lap(&StepProfile::positions);
-  for (const Joint& joint : solverJoints) joints.items[joint.id.index] = joint;
+  storeSolverJoints();
   stepWorkers.stage(bodyBlocks, [&](int block, int) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
   });
@@ -203,12 +205,33 @@ void WorldImpl::colorConstraints() {
   contactBundles.assign(contacts, stepColors);
   // The joints, colour after colour and the overflow last, copied side by side: a colour's
   // joints are every few in slot order, and a pass over them there waited on memory at each.
-  solverJoints.clear();
+  // The copies (600 bytes a joint) in parallel blocks, each joint to its place.
+  scratch.jointOrder.clear();
   jointStart.assign(1, 0);
   for (int color = 0; color <= stepColors.colorCount(); ++color) {
-    for (const int slot : stepColors.jointsOf(color)) solverJoints.push_back(joints.items[slot]);
-    jointStart.push_back(static_cast<int>(solverJoints.size()));
+    const std::vector<int>& slots = stepColors.jointsOf(color);
+    scratch.jointOrder.insert(scratch.jointOrder.end(), slots.begin(), slots.end());
+    jointStart.push_back(static_cast<int>(scratch.jointOrder.size()));
   }
+  const int count = static_cast<int>(scratch.jointOrder.size());
+  solverJoints.resize(static_cast<size_t>(count));
+  stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
+    const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
+    for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
+      solverJoints[static_cast<size_t>(k)] = joints.items[scratch.jointOrder[k]];
+    }
+  });
+}
+
+void WorldImpl::storeSolverJoints() {
+  const int count = static_cast<int>(solverJoints.size());
+  stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
+    const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
+    for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
+      const Joint& joint = solverJoints[static_cast<size_t>(k)];
+      joints.items[joint.id.index] = joint;
+    }
+  });
 }
 
 BundlePass WorldImpl::bundlePass(double h) {
