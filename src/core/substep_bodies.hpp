@@ -79,6 +79,8 @@ class SubstepBodies {
   }
   /// The moving entry of the body in `slot`, or -1.
   int entryOf(int slot) const { return entryOfSlot_[slot]; }
+  /// The row of the body in `slot` (the identity row when it is not moving), for prefetching.
+  const BodyState* stateOfSlot(int slot) const { return &states_[readRow(slot)]; }
   bool isDynamicEntry(int entry) const { return entry >= 0 && entry < dynamicCount_; }
 
   int dynamicCount() const { return dynamicCount_; }

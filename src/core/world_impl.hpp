@@ -279,6 +279,9 @@ struct WorldImpl {
     ReadPoses,   // reads the poses too, writes velocities
     WritePoses,  // reads and writes poses and velocities (the position passes)
   };
+  /// Asks for the memory that the joints a few places after k (before end) will read; with
+  /// `geometry`, their anchors too (the passes that prepare the rows).
+  void prefetchJointAhead(int k, int end, bool geometry) const;
   /// Runs op on solverJoints[index] and writes back what it changed of its bodies.
   template <JointAccess access, class JointOp>
   void onJoint(int index, int worker, const JointOp& op);
