@@ -52,6 +52,10 @@ void WorldImpl::createProxies(int slot) {
   for (size_t i = 0; i < body.shapes.size(); ++i) {
     const Aabb box = computeAabb(body.shapes[i], body.xf).inflated(kAabbMargin);
     const int proxy = tree.createProxy(box, proxyData(slot, static_cast<int>(i)));
+    if (proxyFilters.size() <= static_cast<size_t>(proxy)) {
+      proxyFilters.resize(static_cast<size_t>(proxy) + 1);
+    }
+    proxyFilters[static_cast<size_t>(proxy)] = {body.shapes[i].filter, body.shapes.size() == 1};
     book.proxies.push_back(proxy);
     markMoved(proxy);
     if (body.type == BodyType::Static) {

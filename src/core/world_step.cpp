@@ -106,8 +106,10 @@ void WorldImpl::findNewContacts() {
       const int proxy = movedProxies[k];
       if (!proxyMoved[proxy]) continue;  // destroyed since it moved
       tree.query(tree.fatAabb(proxy), scratch.queryStacks[worker], [&](int other) {
-        // A pair of two moved proxies is reported by the lower one only.
+        // A pair of two moved proxies is reported by the lower one only; one whose filters refuse
+        // it, by neither (world_impl.hpp, ProxyFilter).
         if (other == proxy || (proxyMoved[other] && other < proxy)) return;
+        if (filtersRefuse(proxy, other)) return;
         out.push_back(NewPair{0, 0, 0, proxy, 0, 0, other});
       });
     }
