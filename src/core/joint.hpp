@@ -35,9 +35,9 @@ JointParams paramsOf(const JointDef& def);
 
 struct Joint {
   // First what every velocity pass of a revolute or weld joint reads (bodies, type and switches,
-  // the pair's rows, the feedback), in the first four of its nine cache lines: a pass over the
-  // 19,800 joints of v3_joint_grid reads them from L3, and spread over the struct they took a
-  // line more each.
+  // the pair's rows, the feedback), in the first four of its ten cache lines: a pass over the
+  // 19,800 joints of v3_joint_grid reads them from L3, and the passes prefetch those lines
+  // (world_substeps.cpp); spread over the struct they took a line more each.
   int bodyA = -1, bodyB = -1;  // slot indices
   JointId id;
   JointParams params;  // the definition's numbers the solver reads
@@ -52,13 +52,15 @@ struct Joint {
   Vec2 rA = Vec2::Zero(), rB = Vec2::Zero();           // from each centre of mass to the anchor
   Eigen::Matrix2d pairMass = Eigen::Matrix2d::Zero();  // the pair's (see pairImpulse)
   Vec2 pairBias = Vec2::Zero();
-  // The feedback of this pass for the equality rows and for each limit (a limit not yet reached
-  // is approached speculatively, which is always rigid).
+  // The feedback of this pass for the equality rows (each limit's is lowerFeedback and
+  // upperFeedback below: a limit not yet reached is approached speculatively, always rigid).
   Feedback feedback;
+  // The other rows' accumulated impulses, kept across steps like pairImpulse.
   double motorImpulse = 0.0;
   double lowerImpulse = 0.0, upperImpulse = 0.0;
   double angularImpulse = 0.0;  // weld angle row
   double lengthImpulse = 0.0;   // distance length row (rigid or spring)
+  // Pre-step scratch of the other rows.
   double axialMass = 0.0;
   double angle = 0.0;                       // current joint angle relative to the reference
   double lowerBias = 0.0, upperBias = 0.0;  // target rates of the limit constraints

@@ -253,8 +253,8 @@ struct WorldImpl {
   }
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
   void updateProxies(int slot, bool forced);
-  /// Removes the contacts of the body in `bodySlot` and wakes the bodies they touched (one pass
-  /// over the contacts: v3_rain destroys hundreds of bodies at once).
+  /// Removes the contacts of the body in `bodySlot` and wakes the bodies they touched, in one
+  /// pass over the contacts (v3_rain destroys a column of ragdolls every eighth step).
   void destroyContactsOf(int bodySlot);
   /// Removes the contacts `pred` selects, keeping the others in order.
   template <class Pred>
@@ -286,8 +286,8 @@ struct WorldImpl {
   // The sub-stepping solvers' passes (world_substeps.cpp): an operation on one joint (with
   // scalar views of its bodies) and one on a range of contact bundles, each told its worker.
   // An operation on one joint is any callable (Joint&, SolverBody&, SolverBody&, int worker),
-  // passed as a template argument: a std::function call per joint visit cost v3_joint_grid as
-  // much as a revolute row's arithmetic.
+  // passed as a template argument: with a std::function call and out-of-line body views per
+  // joint visit, v3_joint_grid's relax pass took 14.0 ms a step instead of 10.2.
   using BundleOp =
       std::function<void(const BundlePass&, int begin, int end, bool oneByOne, int worker)>;
   /// What a pass's joint op reads and writes of the joint's bodies.

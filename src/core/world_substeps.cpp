@@ -46,18 +46,18 @@ int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock
 
 }  // namespace
 
-// A pass waits on memory at each joint: 20,000 joints of 600 bytes (v3_joint_grid) do not stay
-// in cache from pass to pass, and the processor does not guess a stride that long. So while it
-// works on joint k, the rows every pass reads of joint k + 8 (and, for a pass that prepares them,
-// the anchors at its end) and the bodies' states of joint k + 4 (whose lines arrived by then) are
-// asked for; hints only, nothing computed changes.
+// A pass waits on memory at each joint: 20,000 joints of 624 bytes (v3_joint_grid) do not stay
+// in cache from pass to pass, and `perf` put a third of the pass loop's samples on the first
+// load of each joint. So while it works on joint k, the rows every pass reads of joint k + 8
+// (and, for a pass that prepares them, the anchors at its end) and the bodies' states of joint
+// k + 4 (whose lines arrived by then) are asked for; hints only, nothing computed changes.
 void WorldImpl::prefetchJointAhead(int k, int end, bool geometry) const {
   constexpr int kJointsAhead = 8, kBodiesAhead = 4;
   if (k + kJointsAhead < end) {
     const Joint& ahead = solverJoints[k + kJointsAhead];
     const char* joint = reinterpret_cast<const char*>(&ahead);
-    // Its first four lines: the rows every pass reads (a fifth, for the impulses after them,
-    // measured slower).
+    // Its first four lines: the rows every pass reads (a fifth, for the impulses after them, was
+    // slower in three side-by-side runs).
     for (int line = 0; line < 4; ++line) __builtin_prefetch(joint + 64 * line);
     if (geometry) {
       __builtin_prefetch(&ahead.localAnchorA);
