@@ -246,6 +246,10 @@ void WorldImpl::colorConstraints() {
   stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
     const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
     for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
+      if (k + 4 < end) {  // a colour's joints lie every few slots apart
+        const char* ahead = reinterpret_cast<const char*>(&joints.items[scratch.jointOrder[k + 4]]);
+        for (size_t line = 0; line < sizeof(Joint); line += 64) __builtin_prefetch(ahead + line);
+      }
       solverJoints[static_cast<size_t>(k)] = joints.items[scratch.jointOrder[k]];
     }
   });
@@ -256,6 +260,11 @@ void WorldImpl::storeSolverJoints() {
   stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
     const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
     for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
+      if (k + 4 < end) {  // the slot written four joints on, asked for to be written
+        const Joint& later = solverJoints[static_cast<size_t>(k + 4)];
+        const char* slot = reinterpret_cast<const char*>(&joints.items[later.id.index]);
+        for (size_t line = 0; line < sizeof(Joint); line += 64) __builtin_prefetch(slot + line, 1);
+      }
       const Joint& joint = solverJoints[static_cast<size_t>(k)];
       joints.items[joint.id.index] = joint;
     }
