@@ -126,6 +126,26 @@ inline Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
   return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
 }
 
+/// safeInverse(pointMassMatrix(a, b, rA, rB)) with the same operations, in scalars, each entry
+/// written on its own (prepareRevolute).
+inline void invertPointMass(const SolverBody& a, const SolverBody& b, double rAx, double rAy,
+                            double rBx, double rBy, Eigen::Matrix2d& inverse) {
+  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
+  const double k00 = mA + mB + iA * rAy * rAy + iB * rBy * rBy;
+  const double k01 = -iA * rAx * rAy - iB * rBx * rBy;
+  const double k11 = mA + mB + iA * rAx * rAx + iB * rBx * rBx;
+  const double det = k00 * k11 - k01 * k01;
+  if (det == 0.0) {
+    inverse(0, 0) = inverse(0, 1) = inverse(1, 0) = inverse(1, 1) = 0.0;
+    return;
+  }
+  const double invDet = 1.0 / det;  // Eigen's 2x2 inverse
+  inverse(0, 0) = k11 * invDet;
+  inverse(1, 0) = -k01 * invDet;
+  inverse(0, 1) = -k01 * invDet;
+  inverse(1, 1) = k00 * invDet;
+}
+
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
 /// (Inline: the joints' rows call it several times each, in every pass of every sub-step.)
@@ -136,8 +156,24 @@ inline void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, doubl
   b.linearVelocity += b.invMass * p;
   b.angularVelocity += b.invInertia * angularB;
 }
+/// The same with the linear impulse as two scalars, each velocity written as two scalars: for
+/// rows computed in scalars (solveRevoluteVelocity), whose Vec2(px, py) the compiler built on the
+/// stack from two stores and read back as one vector, which stalls store forwarding. A view's
+/// velocity written so is read back only as scalars (SubstepBodies::store, warmStartJoint).
+inline void applyJointImpulse(SolverBody& a, SolverBody& b, double px, double py, double angularA,
+                              double angularB) {
+  a.linearVelocity.x() -= a.invMass * px;
+  a.linearVelocity.y() -= a.invMass * py;
+  a.angularVelocity -= a.invInertia * angularA;
+  b.linearVelocity.x() += b.invMass * px;
+  b.linearVelocity.y() += b.invMass * py;
+  b.angularVelocity += b.invInertia * angularB;
+}
 /// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+                          double angularB);
+/// The same with p as two scalars, each coordinate of a centre written on its own.
+void applyJointCorrection(SolverBody& a, SolverBody& b, double px, double py, double angularA,
                           double angularB);
 /// Target rate of a one-sided limit row whose position error is c (>= 0 means within): a limit
 /// not yet reached may be approached within the step (speculative, rigid); one already passed is

@@ -16,15 +16,27 @@ void applyAngular(SolverBody& a, SolverBody& b, double impulse) {
 }  // namespace
 
 void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
-  joint.rA = a.q.apply(joint.localAnchorA - a.localCenter);
-  joint.rB = b.q.apply(joint.localAnchorB - b.localCenter);
-  joint.pairMass = safeInverse(pointMassMatrix(a, b, joint.rA, joint.rB));
+  // In scalars, with the operations of rA = qA (localAnchorA - localCenterA), K^-1 =
+  // safeInverse(pointMassMatrix(...)) and gap = (cB + rB) - (cA + rA): as vectors, each was built
+  // from two scalars on the stack and read back as one (see solveRevoluteVelocity).
+  const Vec2 anchorA = joint.localAnchorA - a.localCenter;
+  const Vec2 anchorB = joint.localAnchorB - b.localCenter;
+  const double rAx = a.q.c * anchorA.x() - a.q.s * anchorA.y();
+  const double rAy = a.q.s * anchorA.x() + a.q.c * anchorA.y();
+  const double rBx = b.q.c * anchorB.x() - b.q.s * anchorB.y();
+  const double rBy = b.q.s * anchorB.x() + b.q.c * anchorB.y();
+  joint.rA.x() = rAx;
+  joint.rA.y() = rAy;
+  joint.rB.x() = rBx;
+  joint.rB.y() = rBy;
+  invertPointMass(a, b, rAx, rAy, rBx, rBy, joint.pairMass);
   const double inertiaSum = a.invInertia + b.invInertia;
   joint.axialMass = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
   joint.angle = b.angle - a.angle - joint.referenceAngle;
 
-  const Vec2 gap = (b.center + joint.rB) - (a.center + joint.rA);
-  joint.pairBias = pointBias(gap, fb);
+  const double gapX = (b.center.x() + rBx) - (a.center.x() + rAx);
+  const double gapY = (b.center.y() + rBy) - (a.center.y() + rAy);
+  joint.pairBias = pointBias(Vec2(gapX, gapY), fb);
   if (joint.params.enableLimit) {  // the limit rows are read only then
     const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
     joint.lowerBias =
@@ -38,9 +50,12 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
 }
 
 void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
-  const Vec2& p = joint.pairImpulse;
+  const double px = joint.pairImpulse.x(), py = joint.pairImpulse.y();
   const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
-  applyJointImpulse(a, b, p, cross(joint.rA, p) + axial, cross(joint.rB, p) + axial);
+  const Vec2& rA = joint.rA;
+  const Vec2& rB = joint.rB;
+  applyJointImpulse(a, b, px, py, (rA.x() * py - rA.y() * px) + axial,
+                    (rB.x() * py - rB.y() * px) + axial);
 }
 
 void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
@@ -67,13 +82,28 @@ void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt
     applyAngular(a, b, -(upper - joint.upperImpulse));
     joint.upperImpulse = upper;
   }
-  const Vec2 cdot = b.linearVelocity + cross(b.angularVelocity, joint.rB) - a.linearVelocity -
-                    cross(a.angularVelocity, joint.rA);
+  // The pair, in scalars with the operations of the vector form
+  //   cdot = vB + wB x rB - vA - wA x rA,
+  //   P = massScale K^-1 (bias - cdot) - impulseScale accumulated:
+  // as vectors, each cross product was built from two scalars and read back as one 16-byte
+  // vector, which stalls store forwarding (see Transform::apply); `perf` put a third of this
+  // function's samples on one such load.
+  const Vec2& rA = joint.rA;
+  const Vec2& rB = joint.rB;
+  const double wA = a.angularVelocity, wB = b.angularVelocity;
+  const double cdotX = b.linearVelocity.x() + -wB * rB.y() - a.linearVelocity.x() - -wA * rA.y();
+  const double cdotY = b.linearVelocity.y() + wB * rB.x() - a.linearVelocity.y() - wA * rA.x();
+  const double errorX = joint.pairBias.x() - cdotX, errorY = joint.pairBias.y() - cdotY;
+  const Eigen::Matrix2d& k = joint.pairMass;
   const Feedback& fb = joint.feedback;
-  const Vec2 impulse = fb.massScale * (joint.pairMass * (joint.pairBias - cdot)) -
-                       fb.impulseScale * joint.pairImpulse;
-  joint.pairImpulse += impulse;
-  applyJointImpulse(a, b, impulse, cross(joint.rA, impulse), cross(joint.rB, impulse));
+  const double ms = fb.massScale;  // Eigen folds it into K: (ms K) (bias - cdot)
+  const double px =
+      (ms * k(0, 0)) * errorX + (ms * k(0, 1)) * errorY - fb.impulseScale * joint.pairImpulse.x();
+  const double py =
+      (ms * k(1, 0)) * errorX + (ms * k(1, 1)) * errorY - fb.impulseScale * joint.pairImpulse.y();
+  joint.pairImpulse.x() += px;
+  joint.pairImpulse.y() += py;
+  applyJointImpulse(a, b, px, py, rA.x() * py - rA.y() * px, rB.x() * py - rB.y() * px);
 }
 
 bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
@@ -88,13 +118,26 @@ bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
     const double impulse = -joint.axialMass * c;
     applyJointCorrection(a, b, Vec2::Zero(), impulse, impulse);
   }
-  const Vec2 rA = a.q.apply(joint.localAnchorA - a.localCenter);
-  const Vec2 rB = b.q.apply(joint.localAnchorB - b.localCenter);
-  Vec2 c = (b.center + rB) - (a.center + rA);
-  const double linearError = c.norm();
-  if (linearError > kMaxLinearCorrection) c *= kMaxLinearCorrection / linearError;
-  const Vec2 impulse = -(safeInverse(pointMassMatrix(a, b, rA, rB)) * c);
-  applyJointCorrection(a, b, impulse, cross(rA, impulse), cross(rB, impulse));
+  // In scalars, with the operations of the vector form (see prepareRevolute).
+  const Vec2 anchorA = joint.localAnchorA - a.localCenter;
+  const Vec2 anchorB = joint.localAnchorB - b.localCenter;
+  const double rAx = a.q.c * anchorA.x() - a.q.s * anchorA.y();
+  const double rAy = a.q.s * anchorA.x() + a.q.c * anchorA.y();
+  const double rBx = b.q.c * anchorB.x() - b.q.s * anchorB.y();
+  const double rBy = b.q.s * anchorB.x() + b.q.c * anchorB.y();
+  double cx = (b.center.x() + rBx) - (a.center.x() + rAx);
+  double cy = (b.center.y() + rBy) - (a.center.y() + rAy);
+  const double linearError = std::sqrt(cx * cx + cy * cy);
+  if (linearError > kMaxLinearCorrection) {
+    const double shrink = kMaxLinearCorrection / linearError;
+    cx *= shrink;
+    cy *= shrink;
+  }
+  Eigen::Matrix2d k;
+  invertPointMass(a, b, rAx, rAy, rBx, rBy, k);
+  const double px = -(k(0, 0) * cx + k(0, 1) * cy);
+  const double py = -(k(1, 0) * cx + k(1, 1) * cy);
+  applyJointCorrection(a, b, px, py, rAx * py - rAy * px, rBx * py - rBy * px);
   return linearError <= def.linearSlop && angularError <= kAngularSlop;
 }
 
