@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "feedback.hpp"
@@ -108,42 +109,50 @@ JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
 
 /// K = [mA + mB + iA rA.y^2 + iB rB.y^2,   -iA rA.x rA.y - iB rB.x rB.y ]
 ///     [-iA rA.x rA.y - iB rB.x rB.y,      mA + mB + iA rA.x^2 + iB rB.x^2]
-/// maps an impulse at a shared point to the change of the relative velocity there.
+/// maps an impulse at a shared point to the change of the relative velocity there. Its entries
+/// (symmetric: k10 = k01), in scalars.
 /// (Inline, as safeInverse: every revolute and weld joint calls both several times a step.)
+struct PointMass {
+  double k00, k01, k11;
+};
+inline PointMass pointMass(const SolverBody& a, const SolverBody& b, double rAx, double rAy,
+                           double rBx, double rBy) {
+  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
+  return PointMass{mA + mB + iA * rAy * rAy + iB * rBy * rBy, -iA * rAx * rAy - iB * rBx * rBy,
+                   mA + mB + iA * rAx * rAx + iB * rBx * rBx};
+}
 inline Eigen::Matrix2d pointMassMatrix(const SolverBody& a, const SolverBody& b, const Vec2& rA,
                                        const Vec2& rB) {
-  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
+  const PointMass m = pointMass(a, b, rA.x(), rA.y(), rB.x(), rB.y());
   Eigen::Matrix2d k;
-  k(0, 0) = mA + mB + iA * rA.y() * rA.y() + iB * rB.y() * rB.y();
-  k(0, 1) = -iA * rA.x() * rA.y() - iB * rB.x() * rB.y();
-  k(1, 0) = k(0, 1);
-  k(1, 1) = mA + mB + iA * rA.x() * rA.x() + iB * rB.x() * rB.x();
+  k << m.k00, m.k01, m.k01, m.k11;
   return k;
 }
-/// The inverse, or zero when K is singular (two bodies that cannot move).
-inline Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
-  const double det = k.determinant();
-  return det != 0.0 ? Eigen::Matrix2d(k.inverse()) : Eigen::Matrix2d::Zero();
-}
-
-/// safeInverse(pointMassMatrix(a, b, rA, rB)) with the same operations, in scalars, each entry
-/// written on its own (prepareRevolute).
-inline void invertPointMass(const SolverBody& a, const SolverBody& b, double rAx, double rAy,
-                            double rBx, double rBy, Eigen::Matrix2d& inverse) {
-  const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
-  const double k00 = mA + mB + iA * rAy * rAy + iB * rBy * rBy;
-  const double k01 = -iA * rAx * rAy - iB * rBx * rBy;
-  const double k11 = mA + mB + iA * rAx * rAx + iB * rBx * rBx;
-  const double det = k00 * k11 - k01 * k01;
+/// The inverse of [k00 k01; k10 k11] with Eigen's operations (1 / det times the adjugate), or
+/// zero when it is singular (two bodies that cannot move); each entry written on its own.
+inline void safeInverse(double k00, double k01, double k10, double k11, Eigen::Matrix2d& inverse) {
+  const double det = k00 * k11 - k10 * k01;
   if (det == 0.0) {
     inverse(0, 0) = inverse(0, 1) = inverse(1, 0) = inverse(1, 1) = 0.0;
     return;
   }
-  const double invDet = 1.0 / det;  // Eigen's 2x2 inverse
+  const double invDet = 1.0 / det;
   inverse(0, 0) = k11 * invDet;
-  inverse(1, 0) = -k01 * invDet;
+  inverse(1, 0) = -k10 * invDet;
   inverse(0, 1) = -k01 * invDet;
   inverse(1, 1) = k00 * invDet;
+}
+inline Eigen::Matrix2d safeInverse(const Eigen::Matrix2d& k) {
+  Eigen::Matrix2d inverse;
+  safeInverse(k(0, 0), k(0, 1), k(1, 0), k(1, 1), inverse);
+  return inverse;
+}
+/// safeInverse(pointMassMatrix(a, b, rA, rB)) in scalars (prepareRevolute: a matrix returned
+/// through the stack was stored as scalars and read back as vectors, stalling store forwarding).
+inline void invertPointMass(const SolverBody& a, const SolverBody& b, double rAx, double rAy,
+                            double rBx, double rBy, Eigen::Matrix2d& inverse) {
+  const PointMass m = pointMass(a, b, rAx, rAy, rBx, rBy);
+  safeInverse(m.k00, m.k01, m.k01, m.k11, inverse);
 }
 
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
@@ -187,12 +196,28 @@ inline double linearBias(double c, const Feedback& fb) {
   if (!(fb.rate > 0.0)) return 0.0;
   return std::clamp(-fb.rate * c, -fb.maxPush, fb.maxPush);
 }
-/// The same for a point's error (a gap between two anchors): at most fb.maxPush long.
+/// The target rate of a point's error (a gap between two anchors): at most fb.maxPush long. In
+/// scalars, each coordinate written on its own (prepareRevolute: a Vec2 returned from two scalars
+/// was stored so and read back as one vector, which stalls store forwarding).
+inline void pointBias(double gapX, double gapY, const Feedback& fb, Vec2& bias) {
+  if (!(fb.rate > 0.0)) {
+    bias.x() = bias.y() = 0.0;
+    return;
+  }
+  double x = -fb.rate * gapX, y = -fb.rate * gapY;
+  const double speed = std::sqrt(x * x + y * y);
+  if (speed > fb.maxPush) {
+    const double shrink = fb.maxPush / speed;
+    x *= shrink;
+    y *= shrink;
+  }
+  bias.x() = x;
+  bias.y() = y;
+}
+/// The same as a vector.
 inline Vec2 pointBias(const Vec2& gap, const Feedback& fb) {
-  if (!(fb.rate > 0.0)) return Vec2::Zero();
-  Vec2 bias = -fb.rate * gap;
-  const double speed = bias.norm();
-  if (speed > fb.maxPush) bias *= fb.maxPush / speed;
+  Vec2 bias;
+  pointBias(gap.x(), gap.y(), fb, bias);
   return bias;
 }
 /// The fastest an angular row's feedback turns the bodies (rad/s): a point `reach` from the

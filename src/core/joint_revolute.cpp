@@ -36,7 +36,7 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
 
   const double gapX = (b.center.x() + rBx) - (a.center.x() + rAx);
   const double gapY = (b.center.y() + rBy) - (a.center.y() + rAy);
-  joint.pairBias = pointBias(Vec2(gapX, gapY), fb);
+  pointBias(gapX, gapY, fb, joint.pairBias);
   if (joint.params.enableLimit) {  // the limit rows are read only then
     const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
     joint.lowerBias =
