@@ -212,10 +212,17 @@ void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const 
     const BodySim& sim = sims_[e];
     const BodyStart& start = starts_[e];
     Body& body = bodies[start.slot];
-    body.center = Vec2(sim.center0.x() + s.dx, sim.center0.y() + s.dy);
+    // In scalars, with the operations of p = c - q.apply(localCenter): the centre stored as two
+    // scalars and read back as one vector stalled store forwarding.
+    const double cx = sim.center0.x() + s.dx, cy = sim.center0.y() + s.dy;
+    body.center.x() = cx;
+    body.center.y() = cy;
     body.angle = start.angle0 + s.turned;
-    body.xf.q = Rot(body.angle);
-    body.xf.p = body.center - body.xf.q.apply(body.localCenter);
+    const Rot q(body.angle);
+    body.xf.q = q;
+    const double lx = body.localCenter.x(), ly = body.localCenter.y();
+    body.xf.p.x() = cx - (q.c * lx - q.s * ly);
+    body.xf.p.y() = cy - (q.s * lx + q.c * ly);
     if (e < dynamicCount_) {
       double vx = s.vx, vy = s.vy, w = s.w;
       limits_.apply(vx, vy, w);  // restitution and the relax pass come after the last move
