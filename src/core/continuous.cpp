@@ -53,6 +53,15 @@ double turnIntoContact(const Shape& shape, const Sweep& sweep, const Shape& othe
   return 1.0;
 }
 
+// A body where it stands now, as a sweep that does not move.
+Sweep standingStill(const Body& body) {
+  Sweep still;
+  still.localCenter = body.localCenter;
+  still.c0 = still.c1 = body.center;
+  still.a0 = still.a1 = body.angle;
+  return still;
+}
+
 }  // namespace
 
 Sweep WorldImpl::sweepOf(const FastBody& fast) const {
@@ -87,10 +96,7 @@ double WorldImpl::firstImpact(const FastBody& fast, std::vector<int>& stack) con
     if (!shouldCollide(std::min(slot, fast.slot), std::max(slot, fast.slot))) return;
     // Others are taken where they stand now: static ones do not move, and a bullet only needs
     // to not skip over a body, wherever that body went this step.
-    Sweep still;
-    still.localCenter = other.localCenter;
-    still.c0 = still.c1 = other.center;
-    still.a0 = still.a1 = other.angle;
+    const Sweep still = standingStill(other);
     const Shape& otherShape = other.shapes[shapeIndex];
     for (const Shape& shape : body.shapes) {
       if (!filtersAllowContact(shape.filter, otherShape.filter)) continue;

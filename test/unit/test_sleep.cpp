@@ -15,6 +15,19 @@ void stepSeconds(World& world, double seconds) {
   while (world.time() < end - 1e-9) world.step();
 }
 
+// Two boxes stacked on the ground, left three seconds to fall asleep.
+struct SleepingStack {
+  BodyId bottom, top;
+};
+SleepingStack addSleepingStack(World& world) {
+  test::addGround(world);
+  SleepingStack stack;
+  stack.bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
+  stack.top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
+  stepSeconds(world, 3.0);
+  return stack;
+}
+
 TEST(Sleep, ASettledStackFallsAsleepAndStaysBitForBitStill) {
   World world;
   test::addGround(world);
@@ -33,10 +46,7 @@ TEST(Sleep, ASettledStackFallsAsleepAndStaysBitForBitStill) {
 
 TEST(Sleep, AForceWakesTheWholeIsland) {
   World world;
-  test::addGround(world);
-  const BodyId bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
-  const BodyId top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
-  stepSeconds(world, 3.0);
+  const auto [bottom, top] = addSleepingStack(world);
   ASSERT_FALSE(world.body(top).awake);
   world.applyForce(bottom, Vec2(200.0, 0.0), world.body(bottom).center);
   world.step();
@@ -65,11 +75,8 @@ TEST(Sleep, AFallingBodyWakesWhatItLandsOn) {
 
 TEST(Sleep, DestroyingABodyWakesWhatItTouchedAndItFalls) {
   World world;
-  test::addGround(world);
-  const BodyId bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
-  const BodyId top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
   const BodyId aside = addBox(world, "aside", Vec2(5, 0.5), 1, 1, BodyType::Dynamic);
-  stepSeconds(world, 3.0);
+  const auto [bottom, top] = addSleepingStack(world);
   ASSERT_FALSE(world.body(top).awake);
   ASSERT_FALSE(world.body(aside).awake);
   ASSERT_TRUE(world.destroyBody(bottom));
@@ -106,10 +113,7 @@ TEST(Sleep, TeleportingWakesAndSleepCanBeTurnedOff) {
 
 TEST(Sleep, SwitchingSleepOffWakesSleepersAndTheyStayAwake) {
   World world;
-  test::addGround(world);
-  const BodyId bottom = addBox(world, "bottom", Vec2(0, 0.5), 1, 1, BodyType::Dynamic);
-  const BodyId top = addBox(world, "top", Vec2(0, 1.5), 1, 1, BodyType::Dynamic);
-  stepSeconds(world, 3.0);
+  const auto [bottom, top] = addSleepingStack(world);
   ASSERT_FALSE(world.body(bottom).awake);
   ASSERT_FALSE(world.body(top).awake);
   world.settings().enableSleep = false;
