@@ -79,8 +79,18 @@ class SubstepBodies {
   }
   /// The moving entry of the body in `slot`, or -1.
   int entryOf(int slot) const { return entryOfSlot_[slot]; }
-  /// The row of the body in `slot` (the identity row when it is not moving), for prefetching.
-  const BodyState* stateOfSlot(int slot) const { return &states_[readRow(slot)]; }
+  /// Asks for what a joint's view of the body in `slot` reads (view(), or velocityView() when
+  /// not `poses`), ahead of the view; a hint only.
+  void prefetchView(int slot, bool poses) const {
+    const int entry = entryOfSlot_[slot];
+    if (entry < 0) return;
+    __builtin_prefetch(&states_[entry]);
+    __builtin_prefetch(&sims_[entry]);
+    if (!poses) return;
+    const char* start = reinterpret_cast<const char*>(&starts_[entry]);
+    __builtin_prefetch(start);
+    __builtin_prefetch(start + sizeof(BodyStart) - 1);  // it may straddle two lines
+  }
   bool isDynamicEntry(int entry) const { return entry >= 0 && entry < dynamicCount_; }
 
   int dynamicCount() const { return dynamicCount_; }

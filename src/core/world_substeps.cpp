@@ -49,8 +49,9 @@ int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock
 // A pass waits on memory at each joint: 20,000 joints of 624 bytes (v3_joint_grid) do not stay
 // in cache from pass to pass, and `perf` put a third of the pass loop's samples on the first
 // load of each joint. So while it works on joint k, the rows every pass reads of joint k + 8
-// (and, for a pass that prepares them, the anchors at its end) and the bodies' states of joint
-// k + 4 (whose lines arrived by then) are asked for; hints only, nothing computed changes.
+// (and, for a pass that prepares them, the anchors at its end) and the bodies' rows (what their
+// views read) of joint k + 4 (whose lines arrived by then) are asked for; hints only, nothing
+// computed changes.
 void WorldImpl::prefetchJointAhead(int k, int end, bool geometry) const {
   constexpr int kJointsAhead = 8, kBodiesAhead = 4;
   if (k + kJointsAhead < end) {
@@ -66,8 +67,8 @@ void WorldImpl::prefetchJointAhead(int k, int end, bool geometry) const {
   }
   if (k + kBodiesAhead < end) {
     const Joint& joint = solverJoints[k + kBodiesAhead];
-    __builtin_prefetch(substepBodies.stateOfSlot(joint.bodyA));
-    __builtin_prefetch(substepBodies.stateOfSlot(joint.bodyB));
+    substepBodies.prefetchView(joint.bodyA, geometry);
+    substepBodies.prefetchView(joint.bodyB, geometry);
   }
 }
 
