@@ -27,12 +27,66 @@ int DynamicTree::createProxy(const Aabb& fatAabb, int64_t userData) {
   nodes_[leaf].userData = userData;
   nodes_[leaf].height = 0;
   insertLeaf(leaf);
+  ++proxyCount_;
   return leaf;
 }
 
 void DynamicTree::destroyProxy(int proxy) {
   removeLeaf(proxy);
   freeNode(proxy);
+  --proxyCount_;
+}
+
+void DynamicTree::rebuild() {
+  if (root_ == kNull) return;
+  // Every node that is not a leaf goes back to the free list, lowest id first out.
+  leaves_.clear();
+  freeList_ = kNull;
+  for (int id = static_cast<int>(nodes_.size()) - 1; id >= 0; --id) {
+    Node& node = nodes_[id];
+    if (node.height == 0) {
+      const Vec2 c = 0.5 * (node.aabb.lower + node.aabb.upper);
+      leaves_.push_back(LeafCenter{c.x(), c.y(), id});
+    } else {
+      freeNode(id);
+    }
+  }
+  root_ = buildBranch(leaves_.data(), leaves_.data() + leaves_.size());
+  nodes_[root_].parent = kNull;
+}
+
+// The leaves [first, last) under one new node: split in two halves along the longer side of
+// their centres' box, each half built the same way.
+int DynamicTree::buildBranch(LeafCenter* first, LeafCenter* last) {
+  if (last - first == 1) return first->id;
+  double minX = first->x, maxX = first->x, minY = first->y, maxY = first->y;
+  for (const LeafCenter* leaf = first + 1; leaf != last; ++leaf) {
+    minX = std::min(minX, leaf->x);
+    maxX = std::max(maxX, leaf->x);
+    minY = std::min(minY, leaf->y);
+    maxY = std::max(maxY, leaf->y);
+  }
+  LeafCenter* middle = first + (last - first) / 2;
+  if (maxX - minX >= maxY - minY) {
+    std::nth_element(first, middle, last, [](const LeafCenter& a, const LeafCenter& b) {
+      return a.x < b.x || (a.x == b.x && a.id < b.id);
+    });
+  } else {
+    std::nth_element(first, middle, last, [](const LeafCenter& a, const LeafCenter& b) {
+      return a.y < b.y || (a.y == b.y && a.id < b.id);
+    });
+  }
+  const int node = allocateNode();
+  const int child1 = buildBranch(first, middle);
+  const int child2 = buildBranch(middle, last);
+  Node& n = nodes_[node];
+  n.child1 = child1;
+  n.child2 = child2;
+  n.aabb = nodes_[child1].aabb.united(nodes_[child2].aabb);
+  n.height = 1 + std::max(nodes_[child1].height, nodes_[child2].height);
+  nodes_[child1].parent = node;
+  nodes_[child2].parent = node;
+  return node;
 }
 
 void DynamicTree::moveProxy(int proxy, const Aabb& fatAabb) {

@@ -19,6 +19,13 @@ class DynamicTree {
   void destroyProxy(int proxy);
   /// Re-inserts the proxy with a new fat box.
   void moveProxy(int proxy, const Aabb& fatAabb);
+  /// Gives the proxy a new fat box without touching the tree above it: rebuild() must follow
+  /// before the next query (for many proxies moved at once).
+  void setFatAabb(int proxy, const Aabb& fatAabb) { nodes_[proxy].aabb = fatAabb; }
+  /// Builds every inner node anew over the leaves, top down; the proxies keep their ids and
+  /// boxes, so every query meets the same proxies (in another order).
+  void rebuild();
+  int proxyCount() const { return proxyCount_; }
 
   const Aabb& fatAabb(int proxy) const { return nodes_[proxy].aabb; }
   int64_t userData(int proxy) const { return nodes_[proxy].userData; }
@@ -110,6 +117,12 @@ class DynamicTree {
     bool isLeaf() const { return child1 == kNull; }
   };
 
+  // A leaf and its box's centre, as rebuild() sorts them.
+  struct LeafCenter {
+    double x, y;
+    int id;
+  };
+  int buildBranch(LeafCenter* first, LeafCenter* last);
   int allocateNode();
   void freeNode(int id);
   void insertLeaf(int leaf);
@@ -121,7 +134,9 @@ class DynamicTree {
   std::vector<Node> nodes_;
   int root_ = kNull;
   int freeList_ = kNull;
+  int proxyCount_ = 0;
   mutable std::vector<int> stack_;
+  std::vector<LeafCenter> leaves_;  // rebuild()'s
 };
 
 }  // namespace impulse2d

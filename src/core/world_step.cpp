@@ -81,12 +81,22 @@ void WorldImpl::updateBroadPhase() {
       if (out.size() - before == body.shapes.size()) book.proxyXf = body.xf;  // all placed anew
     }
   });
+  size_t moved = 0;
+  for (const std::vector<std::pair<int, Aabb>>& block : scratch.refits) moved += block.size();
+  // Many proxies moved (a smashed wall, a shower of parts): their new boxes in place and the tree
+  // built anew, instead of each taken out and put back in turn.
+  const bool rebuild = moved >= 64 && 8 * moved >= static_cast<size_t>(tree.proxyCount());
   for (const std::vector<std::pair<int, Aabb>>& block : scratch.refits) {
     for (const auto& [proxy, box] : block) {
-      tree.moveProxy(proxy, box.inflated(kAabbMargin));
+      if (rebuild) {
+        tree.setFatAabb(proxy, box.inflated(kAabbMargin));
+      } else {
+        tree.moveProxy(proxy, box.inflated(kAabbMargin));
+      }
       markMoved(proxy);
     }
   }
+  if (rebuild) tree.rebuild();
 }
 
 void WorldImpl::findNewContacts() {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -56,6 +57,53 @@ TEST(DynamicTree, QueriesMatchBruteForceThroughInsertsMovesAndRemovals) {
   }
   // A balanced binary tree of n leaves is about log2(n) deep; AVL bounds it by 1.44 log2(n).
   EXPECT_LE(tree.height(), 1.44 * std::log2(static_cast<double>(proxies.size())) + 2);
+}
+
+// Many proxies given new boxes in place and the tree rebuilt, then moved, removed and added one
+// by one again: every query still meets exactly what a scan meets, the rebuilt tree is as shallow
+// as halving gives, and it uses no more nodes than it had.
+TEST(DynamicTree, RebuiltTreeQueriesMatchBruteForceAndTakesIncrementalEditsAfter) {
+  std::mt19937 rng(7);
+  DynamicTree tree;
+  std::vector<int> proxies;
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 1000; ++i) {
+    boxes.push_back(randomBox(rng));
+    proxies.push_back(tree.createProxy(boxes.back(), i));
+  }
+  const int highest = *std::max_element(proxies.begin(), proxies.end());
+  auto expectMatches = [&] {
+    for (int q = 0; q < 200; ++q) {
+      const Aabb query = randomBox(rng);
+      std::set<int> expected;
+      for (size_t i = 0; i < proxies.size(); ++i) {
+        if (boxes[i].overlaps(query)) expected.insert(proxies[i]);
+      }
+      ASSERT_EQ(treeHits(tree, query), expected);
+    }
+  };
+  for (int round = 0; round < 3; ++round) {
+    for (size_t i = round; i < proxies.size(); i += 2) {  // half of them, in place
+      boxes[i] = randomBox(rng);
+      tree.setFatAabb(proxies[i], boxes[i]);
+    }
+    tree.rebuild();
+    EXPECT_EQ(tree.proxyCount(), static_cast<int>(proxies.size()));
+    EXPECT_EQ(tree.height(), static_cast<int>(std::ceil(std::log2(proxies.size()))));
+    expectMatches();
+    for (size_t i = 0; i < proxies.size(); i += 5) {
+      boxes[i] = randomBox(rng);
+      tree.moveProxy(proxies[i], boxes[i]);
+    }
+    tree.destroyProxy(proxies.back());
+    proxies.pop_back();
+    boxes.pop_back();
+    expectMatches();
+  }
+  boxes.push_back(randomBox(rng));
+  proxies.push_back(tree.createProxy(boxes.back(), -1));
+  EXPECT_LE(proxies.back(), 2 * highest) << "the rebuild reused the inner nodes it freed";
+  expectMatches();
 }
 
 TEST(DynamicTree, SortedInsertionStaysBalancedAndNodesAreReused) {
