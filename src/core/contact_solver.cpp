@@ -162,12 +162,7 @@ void ContactSolver::warmStart() {
       angularB += p.normalImpulse * p.normalArmB + p.tangentImpulse * p.tangentArmB;
     }
     const double px = normal * nx - tangent * ny, py = normal * ny + tangent * nx;
-    a.linearVelocity.x() -= a.invMass * px;
-    a.linearVelocity.y() -= a.invMass * py;
-    a.angularVelocity -= a.invInertia * angularA;
-    b.linearVelocity.x() += b.invMass * px;
-    b.linearVelocity.y() += b.invMass * py;
-    b.angularVelocity += b.invInertia * angularB;
+    applyImpulse(a, b, px, py, angularA, angularB);
   }
 }
 

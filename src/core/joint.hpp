@@ -165,19 +165,6 @@ inline void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, doubl
   b.linearVelocity += b.invMass * p;
   b.angularVelocity += b.invInertia * angularB;
 }
-/// The same with the linear impulse as two scalars, each velocity written as two scalars: for
-/// rows computed in scalars (solveRevoluteVelocity), whose Vec2(px, py) the compiler built on the
-/// stack from two stores and read back as one vector, which stalls store forwarding. A view's
-/// velocity written so is read back only as scalars (SubstepBodies::store, warmStartJoint).
-inline void applyJointImpulse(SolverBody& a, SolverBody& b, double px, double py, double angularA,
-                              double angularB) {
-  a.linearVelocity.x() -= a.invMass * px;
-  a.linearVelocity.y() -= a.invMass * py;
-  a.angularVelocity -= a.invInertia * angularA;
-  b.linearVelocity.x() += b.invMass * px;
-  b.linearVelocity.y() += b.invMass * py;
-  b.angularVelocity += b.invInertia * angularB;
-}
 /// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB);

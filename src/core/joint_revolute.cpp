@@ -13,30 +13,39 @@ void applyAngular(SolverBody& a, SolverBody& b, double impulse) {
   applyJointImpulse(a, b, Vec2::Zero(), impulse, impulse);
 }
 
+// The anchors' arms from each centre of mass, rA = qA (localAnchorA - localCenterA) and likewise
+// rB, and the gap between the anchors, (cB + rB) - (cA + rA), in scalars with the operations of
+// the vector forms: as vectors, each was built from two scalars on the stack and read back as
+// one, which stalls store forwarding (see solveRevoluteVelocity).
+struct AnchorGap {
+  double rAx, rAy, rBx, rBy, gapX, gapY;
+};
+AnchorGap anchorGap(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  const Vec2 anchorA = joint.localAnchorA - a.localCenter;
+  const Vec2 anchorB = joint.localAnchorB - b.localCenter;
+  AnchorGap g;
+  g.rAx = a.q.c * anchorA.x() - a.q.s * anchorA.y();
+  g.rAy = a.q.s * anchorA.x() + a.q.c * anchorA.y();
+  g.rBx = b.q.c * anchorB.x() - b.q.s * anchorB.y();
+  g.rBy = b.q.s * anchorB.x() + b.q.c * anchorB.y();
+  g.gapX = (b.center.x() + g.rBx) - (a.center.x() + g.rAx);
+  g.gapY = (b.center.y() + g.rBy) - (a.center.y() + g.rAy);
+  return g;
+}
+
 }  // namespace
 
 void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt) {
-  // In scalars, with the operations of rA = qA (localAnchorA - localCenterA), K^-1 =
-  // safeInverse(pointMassMatrix(...)) and gap = (cB + rB) - (cA + rA): as vectors, each was built
-  // from two scalars on the stack and read back as one (see solveRevoluteVelocity).
-  const Vec2 anchorA = joint.localAnchorA - a.localCenter;
-  const Vec2 anchorB = joint.localAnchorB - b.localCenter;
-  const double rAx = a.q.c * anchorA.x() - a.q.s * anchorA.y();
-  const double rAy = a.q.s * anchorA.x() + a.q.c * anchorA.y();
-  const double rBx = b.q.c * anchorB.x() - b.q.s * anchorB.y();
-  const double rBy = b.q.s * anchorB.x() + b.q.c * anchorB.y();
-  joint.rA.x() = rAx;
-  joint.rA.y() = rAy;
-  joint.rB.x() = rBx;
-  joint.rB.y() = rBy;
-  invertPointMass(a, b, rAx, rAy, rBx, rBy, joint.pairMass);
+  const AnchorGap g = anchorGap(joint, a, b);
+  joint.rA.x() = g.rAx;  // each coordinate on its own, as read (solveRevoluteVelocity)
+  joint.rA.y() = g.rAy;
+  joint.rB.x() = g.rBx;
+  joint.rB.y() = g.rBy;
+  invertPointMass(a, b, g.rAx, g.rAy, g.rBx, g.rBy, joint.pairMass);
   const double inertiaSum = a.invInertia + b.invInertia;
   joint.axialMass = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
   joint.angle = b.angle - a.angle - joint.referenceAngle;
-
-  const double gapX = (b.center.x() + rBx) - (a.center.x() + rAx);
-  const double gapY = (b.center.y() + rBy) - (a.center.y() + rAy);
-  pointBias(gapX, gapY, fb, joint.pairBias);
+  pointBias(g.gapX, g.gapY, fb, joint.pairBias);
   if (joint.params.enableLimit) {  // the limit rows are read only then
     const double maxTurn = maxAngularPush(fb, anchorReach(joint.rA, joint.rB));
     joint.lowerBias =
@@ -54,8 +63,8 @@ void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
   const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
   const Vec2& rA = joint.rA;
   const Vec2& rB = joint.rB;
-  applyJointImpulse(a, b, px, py, (rA.x() * py - rA.y() * px) + axial,
-                    (rB.x() * py - rB.y() * px) + axial);
+  applyImpulse(a, b, px, py, (rA.x() * py - rA.y() * px) + axial,
+               (rB.x() * py - rB.y() * px) + axial);
 }
 
 void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
@@ -103,7 +112,7 @@ void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt
       (ms * k(1, 0)) * errorX + (ms * k(1, 1)) * errorY - fb.impulseScale * joint.pairImpulse.y();
   joint.pairImpulse.x() += px;
   joint.pairImpulse.y() += py;
-  applyJointImpulse(a, b, px, py, rA.x() * py - rA.y() * px, rB.x() * py - rB.y() * px);
+  applyImpulse(a, b, px, py, rA.x() * py - rA.y() * px, rB.x() * py - rB.y() * px);
 }
 
 bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
@@ -118,15 +127,8 @@ bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
     const double impulse = -joint.axialMass * c;
     applyJointCorrection(a, b, Vec2::Zero(), impulse, impulse);
   }
-  // In scalars, with the operations of the vector form (see prepareRevolute).
-  const Vec2 anchorA = joint.localAnchorA - a.localCenter;
-  const Vec2 anchorB = joint.localAnchorB - b.localCenter;
-  const double rAx = a.q.c * anchorA.x() - a.q.s * anchorA.y();
-  const double rAy = a.q.s * anchorA.x() + a.q.c * anchorA.y();
-  const double rBx = b.q.c * anchorB.x() - b.q.s * anchorB.y();
-  const double rBy = b.q.s * anchorB.x() + b.q.c * anchorB.y();
-  double cx = (b.center.x() + rBx) - (a.center.x() + rAx);
-  double cy = (b.center.y() + rBy) - (a.center.y() + rAy);
+  const AnchorGap g = anchorGap(joint, a, b);
+  double cx = g.gapX, cy = g.gapY;
   const double linearError = std::sqrt(cx * cx + cy * cy);
   if (linearError > kMaxLinearCorrection) {
     const double shrink = kMaxLinearCorrection / linearError;
@@ -134,10 +136,10 @@ bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
     cy *= shrink;
   }
   Eigen::Matrix2d k;
-  invertPointMass(a, b, rAx, rAy, rBx, rBy, k);
+  invertPointMass(a, b, g.rAx, g.rAy, g.rBx, g.rBy, k);
   const double px = -(k(0, 0) * cx + k(0, 1) * cy);
   const double py = -(k(1, 0) * cx + k(1, 1) * cy);
-  applyJointCorrection(a, b, px, py, rAx * py - rAy * px, rBx * py - rBy * px);
+  applyJointCorrection(a, b, px, py, g.rAx * py - g.rAy * px, g.rBx * py - g.rBy * px);
   return linearError <= def.linearSlop && angularError <= kAngularSlop;
 }
 

@@ -58,6 +58,21 @@ inline SolverBody solverView(const Body& body) {
 
 constexpr double kSmallTurn = 0.02;  // rad: below it rotationBy takes the series
 
+/// Applies the impulse (px, py) between two bodies, plus the angular impulses; A takes the
+/// reaction: vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB. Each coordinate is
+/// written on its own, for rows computed in scalars (contact_solver.cpp, joint_revolute.cpp):
+/// their Vec2(px, py) was built on the stack from two stores and read back as one vector, which
+/// stalls store forwarding; a velocity written so is read back as scalars.
+inline void applyImpulse(SolverBody& a, SolverBody& b, double px, double py, double angularA,
+                         double angularB) {
+  a.linearVelocity.x() -= a.invMass * px;
+  a.linearVelocity.y() -= a.invMass * py;
+  a.angularVelocity -= a.invInertia * angularA;
+  b.linearVelocity.x() += b.invMass * px;
+  b.linearVelocity.y() += b.invMass * py;
+  b.angularVelocity += b.invInertia * angularB;
+}
+
 /// The rotation by a small angle without calling sin and cos: their Taylor series to the seventh
 /// power, whose next terms stay below round-off up to 0.02 rad (a sub-step of a body turning at
 /// 10 rad/s); larger turns call them.

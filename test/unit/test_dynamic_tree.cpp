@@ -24,17 +24,20 @@ std::set<int> treeHits(const DynamicTree& tree, const Aabb& box) {
   return hits;
 }
 
-TEST(DynamicTree, QueriesMatchBruteForceThroughInsertsMovesAndRemovals) {
-  std::mt19937 rng(42);
+// A tree and, beside it, each proxy's box, for a brute-force scan to check the tree against.
+struct CheckedTree {
   DynamicTree tree;
   std::vector<int> proxies;
   std::vector<Aabb> boxes;
-  for (int i = 0; i < 1000; ++i) {
-    boxes.push_back(randomBox(rng));
-    proxies.push_back(tree.createProxy(boxes.back(), i));
+
+  void addRandom(std::mt19937& rng, int count) {
+    for (int i = 0; i < count; ++i) {
+      boxes.push_back(randomBox(rng));
+      proxies.push_back(tree.createProxy(boxes.back(), static_cast<int64_t>(proxies.size())));
+    }
   }
-  for (int round = 0; round < 3; ++round) {
-    for (int q = 0; q < 200; ++q) {
+  void expectQueriesMatchScan(std::mt19937& rng, int queries) const {
+    for (int q = 0; q < queries; ++q) {
       const Aabb query = randomBox(rng);
       std::set<int> expected;
       for (size_t i = 0; i < proxies.size(); ++i) {
@@ -42,21 +45,44 @@ TEST(DynamicTree, QueriesMatchBruteForceThroughInsertsMovesAndRemovals) {
       }
       ASSERT_EQ(treeHits(tree, query), expected);
     }
-    // Move a third, remove a tenth.
-    for (size_t i = 0; i < proxies.size(); i += 3) {
+  }
+  // Every stride-th proxy from `first` gets a new random box: moved in the tree, or only set in
+  // place (`inPlace`: rebuild() must follow).
+  void moveEvery(std::mt19937& rng, size_t first, size_t stride, bool inPlace) {
+    for (size_t i = first; i < proxies.size(); i += stride) {
       boxes[i] = randomBox(rng);
-      tree.moveProxy(proxies[i], boxes[i]);
+      if (inPlace) {
+        tree.setFatAabb(proxies[i], boxes[i]);
+      } else {
+        tree.moveProxy(proxies[i], boxes[i]);
+      }
     }
-    for (size_t i = proxies.size(); i-- > 0;) {
+  }
+  void removeLast() {
+    tree.destroyProxy(proxies.back());
+    proxies.pop_back();
+    boxes.pop_back();
+  }
+};
+
+TEST(DynamicTree, QueriesMatchBruteForceThroughInsertsMovesAndRemovals) {
+  std::mt19937 rng(42);
+  CheckedTree checked;
+  checked.addRandom(rng, 1000);
+  for (int round = 0; round < 3; ++round) {
+    checked.expectQueriesMatchScan(rng, 200);
+    checked.moveEvery(rng, 0, 3, false);                 // a third moved
+    for (size_t i = checked.proxies.size(); i-- > 0;) {  // a tenth removed
       if (i % 10 == static_cast<size_t>(round)) {
-        tree.destroyProxy(proxies[i]);
-        proxies.erase(proxies.begin() + i);
-        boxes.erase(boxes.begin() + i);
+        checked.tree.destroyProxy(checked.proxies[i]);
+        checked.proxies.erase(checked.proxies.begin() + i);
+        checked.boxes.erase(checked.boxes.begin() + i);
       }
     }
   }
   // A balanced binary tree of n leaves is about log2(n) deep; AVL bounds it by 1.44 log2(n).
-  EXPECT_LE(tree.height(), 1.44 * std::log2(static_cast<double>(proxies.size())) + 2);
+  EXPECT_LE(checked.tree.height(),
+            1.44 * std::log2(static_cast<double>(checked.proxies.size())) + 2);
 }
 
 // Many proxies given new boxes in place and the tree rebuilt, then moved, removed and added one
@@ -64,46 +90,23 @@ TEST(DynamicTree, QueriesMatchBruteForceThroughInsertsMovesAndRemovals) {
 // as halving gives, and it uses no more nodes than it had.
 TEST(DynamicTree, RebuiltTreeQueriesMatchBruteForceAndTakesIncrementalEditsAfter) {
   std::mt19937 rng(7);
-  DynamicTree tree;
-  std::vector<int> proxies;
-  std::vector<Aabb> boxes;
-  for (int i = 0; i < 1000; ++i) {
-    boxes.push_back(randomBox(rng));
-    proxies.push_back(tree.createProxy(boxes.back(), i));
-  }
+  CheckedTree checked;
+  checked.addRandom(rng, 1000);
+  const std::vector<int>& proxies = checked.proxies;
   const int highest = *std::max_element(proxies.begin(), proxies.end());
-  auto expectMatches = [&] {
-    for (int q = 0; q < 200; ++q) {
-      const Aabb query = randomBox(rng);
-      std::set<int> expected;
-      for (size_t i = 0; i < proxies.size(); ++i) {
-        if (boxes[i].overlaps(query)) expected.insert(proxies[i]);
-      }
-      ASSERT_EQ(treeHits(tree, query), expected);
-    }
-  };
-  for (int round = 0; round < 3; ++round) {
-    for (size_t i = round; i < proxies.size(); i += 2) {  // half of them, in place
-      boxes[i] = randomBox(rng);
-      tree.setFatAabb(proxies[i], boxes[i]);
-    }
-    tree.rebuild();
-    EXPECT_EQ(tree.proxyCount(), static_cast<int>(proxies.size()));
-    EXPECT_EQ(tree.height(), static_cast<int>(std::ceil(std::log2(proxies.size()))));
-    expectMatches();
-    for (size_t i = 0; i < proxies.size(); i += 5) {
-      boxes[i] = randomBox(rng);
-      tree.moveProxy(proxies[i], boxes[i]);
-    }
-    tree.destroyProxy(proxies.back());
-    proxies.pop_back();
-    boxes.pop_back();
-    expectMatches();
+  for (size_t round = 0; round < 3; ++round) {
+    checked.moveEvery(rng, round, 2, true);  // half of them, in place
+    checked.tree.rebuild();
+    EXPECT_EQ(checked.tree.proxyCount(), static_cast<int>(proxies.size()));
+    EXPECT_EQ(checked.tree.height(), static_cast<int>(std::ceil(std::log2(proxies.size()))));
+    checked.expectQueriesMatchScan(rng, 200);
+    checked.moveEvery(rng, 0, 5, false);
+    checked.removeLast();
+    checked.expectQueriesMatchScan(rng, 200);
   }
-  boxes.push_back(randomBox(rng));
-  proxies.push_back(tree.createProxy(boxes.back(), -1));
+  checked.addRandom(rng, 1);
   EXPECT_LE(proxies.back(), 2 * highest) << "the rebuild reused the inner nodes it freed";
-  expectMatches();
+  checked.expectQueriesMatchScan(rng, 200);
 }
 
 TEST(DynamicTree, SortedInsertionStaysBalancedAndNodesAreReused) {
