@@ -130,24 +130,31 @@ void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimi
   const Vec2 va = a.linearVelocity, vb = b.linearVelocity;
   const double wa = a.angularVelocity, wb = b.angularVelocity;
   applyJointWarmStart(joint, a, b);
+  // How much either body's velocity changed: the square of its linear change and its turn rate's
+  // change. Read as scalars: a joint type may have written them so (applyImpulse).
+  struct Change {
+    double speedSquared, turnRate;
+  };
+  auto changeOf = [](const SolverBody& body, const Vec2& v, double w) {
+    const double dvx = body.linearVelocity.x() - v.x(), dvy = body.linearVelocity.y() - v.y();
+    return Change{dvx * dvx + dvy * dvy, body.angularVelocity - w};
+  };
+  const Change changeA = changeOf(a, va, wa), changeB = changeOf(b, vb, wb);
   // Within the limits without a division (`perf` put a fifth of this function's samples in the
   // joint grid just after its four divisions): dv^2 <= maxSpeed^2 gives dv^2 / maxSpeed^2 <= 1
   // after rounding too, and a turn of at most half the limit a squared ratio of at most 1/4, so
   // `worst` below would be at most 1 (a limit squared to 0 would make it 0 / 0 instead).
-  auto clearlyWithin = [&](const SolverBody& body, const Vec2& v, double w) {
-    const double dvx = body.linearVelocity.x() - v.x(), dvy = body.linearVelocity.y() - v.y();
-    return dvx * dvx + dvy * dvy <= limits.maxSpeedSquared && limits.maxSpeedSquared > 0.0 &&
-           std::abs(body.angularVelocity - w) <= 0.5 * limits.maxTurnRate;
+  auto clearlyWithin = [&](const Change& c) {
+    return c.speedSquared <= limits.maxSpeedSquared && limits.maxSpeedSquared > 0.0 &&
+           std::abs(c.turnRate) <= 0.5 * limits.maxTurnRate;
   };
-  if (clearlyWithin(a, va, wa) && clearlyWithin(b, vb, wb)) return;
-  // How far past the motion limits the change of either body's velocity goes (squared). Read as
-  // scalars: a joint type may have written them so (applyJointImpulse).
-  auto excess = [&](const SolverBody& body, const Vec2& v, double w) {
-    const double turn = (body.angularVelocity - w) / limits.maxTurnRate;
-    const double dvx = body.linearVelocity.x() - v.x(), dvy = body.linearVelocity.y() - v.y();
-    return std::max((dvx * dvx + dvy * dvy) / limits.maxSpeedSquared, turn * turn);
+  if (clearlyWithin(changeA) && clearlyWithin(changeB)) return;
+  // How far past the motion limits the change goes (squared).
+  auto excess = [&](const Change& c) {
+    const double turn = c.turnRate / limits.maxTurnRate;
+    return std::max(c.speedSquared / limits.maxSpeedSquared, turn * turn);
   };
-  const double worst = std::max(excess(a, va, wa), excess(b, vb, wb));
+  const double worst = std::max(excess(changeA), excess(changeB));
   if (worst <= 1.0) return;
   // Last step's impulse would change a body's velocity by more than the fastest it may move:
   // a joint that cannot be met whose impulse grew from sub-step to sub-step while the motion

@@ -160,10 +160,7 @@ inline void invertPointMass(const SolverBody& a, const SolverBody& b, double rAx
 /// (Inline: the joints' rows call it several times each, in every pass of every sub-step.)
 inline void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                               double angularB) {
-  a.linearVelocity -= a.invMass * p;
-  a.angularVelocity -= a.invInertia * angularA;
-  b.linearVelocity += b.invMass * p;
-  b.angularVelocity += b.invInertia * angularB;
+  applyImpulse(a, b, p.x(), p.y(), angularA, angularB);  // solver_body.hpp
 }
 /// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,

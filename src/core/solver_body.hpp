@@ -60,9 +60,9 @@ constexpr double kSmallTurn = 0.02;  // rad: below it rotationBy takes the serie
 
 /// Applies the impulse (px, py) between two bodies, plus the angular impulses; A takes the
 /// reaction: vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB. Each coordinate is
-/// written on its own, for rows computed in scalars (contact_solver.cpp, joint_revolute.cpp):
-/// their Vec2(px, py) was built on the stack from two stores and read back as one vector, which
-/// stalls store forwarding; a velocity written so is read back as scalars.
+/// written on its own, for rows computed in scalars (contact_solver.cpp, the joints): their
+/// Vec2(px, py) was built on the stack from two stores and read back as one vector, which stalls
+/// store forwarding; a velocity written so is read back as scalars.
 inline void applyImpulse(SolverBody& a, SolverBody& b, double px, double py, double angularA,
                          double angularB) {
   a.linearVelocity.x() -= a.invMass * px;

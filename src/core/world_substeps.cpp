@@ -44,6 +44,14 @@ constexpr int kJointsPerCopyBlock = 256;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
+// Asks for every line of a joint (the copies into and out of colour order read or write it all).
+template <bool forWriting>
+void prefetchWholeJoint(const Joint& joint) {
+  const char* bytes = reinterpret_cast<const char*>(&joint);
+  for (size_t line = 0; line < sizeof(Joint); line += 64)
+    __builtin_prefetch(bytes + line, forWriting);
+}
+
 }  // namespace
 
 // A pass waits on memory at each joint: 20,000 joints of 624 bytes (v3_joint_grid) do not stay
@@ -248,8 +256,7 @@ void WorldImpl::colorConstraints() {
     const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
     for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
       if (k + 4 < end) {  // a colour's joints lie every few slots apart
-        const char* ahead = reinterpret_cast<const char*>(&joints.items[scratch.jointOrder[k + 4]]);
-        for (size_t line = 0; line < sizeof(Joint); line += 64) __builtin_prefetch(ahead + line);
+        prefetchWholeJoint<false>(joints.items[scratch.jointOrder[k + 4]]);
       }
       solverJoints[static_cast<size_t>(k)] = joints.items[scratch.jointOrder[k]];
     }
@@ -261,10 +268,8 @@ void WorldImpl::storeSolverJoints() {
   stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
     const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
     for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
-      if (k + 4 < end) {  // the slot written four joints on, asked for to be written
-        const Joint& later = solverJoints[static_cast<size_t>(k + 4)];
-        const char* slot = reinterpret_cast<const char*>(&joints.items[later.id.index]);
-        for (size_t line = 0; line < sizeof(Joint); line += 64) __builtin_prefetch(slot + line, 1);
+      if (k + 4 < end) {  // the slot written four joints on
+        prefetchWholeJoint<true>(joints.items[solverJoints[static_cast<size_t>(k + 4)].id.index]);
       }
       const Joint& joint = solverJoints[static_cast<size_t>(k)];
       joints.items[joint.id.index] = joint;
