@@ -60,7 +60,7 @@ void WorldImpl::wakeJointedSleepers() {
   stack.clear();
   for (size_t j = 0; j < joints.items.size(); ++j) {  // by joint: a step's cost follows them
     if (!joints.alive[j]) continue;
-    for (const int slot : {joints.items[j].bodyA, joints.items[j].bodyB}) {
+    for (const int slot : {jointBodies[j].first, jointBodies[j].second}) {
       if (isMoving(bodies.items[slot])) stack.push_back(slot);
     }
   }
@@ -68,8 +68,8 @@ void WorldImpl::wakeJointedSleepers() {
     const int slot = stack.back();
     stack.pop_back();
     for (const int j : jointsOfBody[slot]) {
-      const Joint& joint = joints.items[j];
-      const int other = joint.bodyA == slot ? joint.bodyB : joint.bodyA;
+      const auto [bodyA, bodyB] = jointBodies[j];
+      const int other = bodyA == slot ? bodyB : bodyA;
       Body& body = bodies.items[other];
       if (body.type != BodyType::Dynamic || body.awake) continue;
       wakeBody(body);
@@ -151,7 +151,7 @@ void WorldImpl::updateSleep(double dt) {
   }
   for (const int i : movableSlots) {
     if (bodies.items[i].type != BodyType::Dynamic) continue;
-    for (const int j : jointsOfBody[i]) link(joints.items[j].bodyA, joints.items[j].bodyB);
+    for (const int j : jointsOfBody[i]) link(jointBodies[j].first, jointBodies[j].second);
   }
 
   // Each island at its root: whether a body of it is awake, then (its sleepers woken) the least

@@ -39,12 +39,13 @@ int WeldClusters::findRoot(int slot) {
 }
 
 void WeldClusters::find(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
-                        const std::vector<Joint>& joints, const std::vector<char>& jointAlive) {
+                        const std::vector<Joint>& joints, const std::vector<char>& jointAlive,
+                        int rigidWelds) {
   roots_.clear();
   first_.clear();
   members_.clear();
   bool anyWeld = false;
-  for (size_t j = 0; j < joints.size() && !anyWeld; ++j) {
+  for (size_t j = 0; rigidWelds > 0 && j < joints.size() && !anyWeld; ++j) {
     const Joint& joint = joints[j];
     anyWeld = jointAlive[j] && merges(joint, bodies);
   }

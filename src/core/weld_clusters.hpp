@@ -63,11 +63,12 @@ bool isRigidWeld(const Joint& joint);
 
 class WeldClusters {
  public:
-  /// Finds this step's clusters: awake dynamic bodies joined by rigid welds. Costs one pass over
-  /// the joints when there is no rigid weld between two such bodies; else passes over the
-  /// movable slots (WorldImpl::movableSlots, ascending: static bodies are never members).
+  /// Finds this step's clusters: awake dynamic bodies joined by rigid welds. Costs nothing when
+  /// the world has no rigid weld (`rigidWelds`, its count), one pass over the joints when none
+  /// joins two such bodies; else passes over the movable slots (WorldImpl::movableSlots,
+  /// ascending: static bodies are never members).
   void find(const std::vector<Body>& bodies, const std::vector<int>& movableSlots,
-            const std::vector<Joint>& joints, const std::vector<char>& jointAlive);
+            const std::vector<Joint>& joints, const std::vector<char>& jointAlive, int rigidWelds);
   bool any() const { return !roots_.empty(); }
   int count() const { return static_cast<int>(roots_.size()); }
   /// The cluster of the body in `slot`, or -1 when it moves alone.

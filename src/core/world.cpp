@@ -108,10 +108,10 @@ bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
   const Body& b = bodies.items[bodyB];
   if (a.type != BodyType::Dynamic && b.type != BodyType::Dynamic) return false;
   for (const int j : jointsOfBody[bodyA]) {
-    const Joint& joint = joints.items[j];
-    const bool connects = (joint.bodyA == bodyA && joint.bodyB == bodyB) ||
-                          (joint.bodyA == bodyB && joint.bodyB == bodyA);
-    if (connects && !joint.params.collideConnected) return false;
+    const auto [jointA, jointB] = jointBodies[j];
+    const bool connects =
+        (jointA == bodyA && jointB == bodyB) || (jointA == bodyB && jointB == bodyA);
+    if (connects && !joints.items[j].params.collideConnected) return false;
   }
   // Filters belong to shapes: the pair of bodies is kept when any two of their shapes may touch,
   // and updateContact leaves the others without points.
@@ -341,6 +341,7 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
     if (error) *error = why;
     return JointId();
   }
+  w.syncJoints();  // the last step's joints back in their slots before one is added
   const int slot = w.joints.acquire();
   Joint& joint = w.joints.items[slot];
   joint.id = JointId{slot, w.joints.generation[slot]};
@@ -351,6 +352,9 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
   Body& a = w.bodies.items[joint.bodyA];
   Body& b = w.bodies.items[joint.bodyB];
   initJoint(joint, def, a, b);
+  if (w.jointBodies.size() < w.joints.items.size()) w.jointBodies.resize(w.joints.items.size());
+  w.jointBodies[slot] = {joint.bodyA, joint.bodyB};
+  if (isRigidWeld(joint)) ++w.rigidWelds;
   w.jointsOfBody[joint.bodyA].push_back(slot);
   w.jointsOfBody[joint.bodyB].push_back(slot);
   if (!def.name.empty()) w.jointByName[def.name] = slot;
@@ -366,7 +370,9 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
 bool World::destroyJoint(JointId id) {
   WorldImpl& w = *impl_;
   if (!isValid(id)) return false;
+  w.syncJoints();  // before its slot is freed (and the others' kept)
   Joint& joint = w.joints.items[id.index];
+  if (isRigidWeld(joint)) --w.rigidWelds;
   for (const int slot : {joint.bodyA, joint.bodyB}) {
     auto& list = w.jointsOfBody[slot];
     list.erase(std::remove(list.begin(), list.end(), id.index), list.end());
@@ -502,6 +508,7 @@ bool World::setJointMotor(JointId id, bool enable, double speed, double maxForce
       maxForceOrTorque < 0.0) {
     return false;
   }
+  impl_->syncJoints();  // before its params change in its slot
   Joint& joint = impl_->joints.items[id.index];
   JointDef& def = impl_->jointDefs[id.index];
   def.enableMotor = joint.params.enableMotor = enable;

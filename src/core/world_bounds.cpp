@@ -141,8 +141,8 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
       const Body& body = bodies.items[group[k]];
       momentumDown += body.mass * floor.down.dot(body.linearVelocity);
       for (const int j : jointsOfBody[group[k]]) {
-        const Joint& joint = joints.items[j];
-        const int other = joint.bodyA == group[k] ? joint.bodyB : joint.bodyA;
+        const auto [bodyA, bodyB] = jointBodies[j];
+        const int other = bodyA == group[k] ? bodyB : bodyA;
         if (mark[other] == 0) held = true;
         if (mark[other] == 1) {
           mark[other] = 2;

@@ -338,7 +338,7 @@ void WorldImpl::solve(double dt) {
 
 void WorldImpl::gatherSolverBodies() {
   const StageClock clock(stage(&StepProfile::prepare));
-  weldClusters.find(bodies.items, movableSlots, joints.items, joints.alive);
+  weldClusters.find(bodies.items, movableSlots, joints.items, joints.alive, rigidWelds);
   solverBodies.gather(bodies.items, movableSlots, weldClusters);
 }
 

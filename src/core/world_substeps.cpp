@@ -143,7 +143,7 @@ void WorldImpl::solveSubsteps(double dt) {
   const bool soft = def.solver == SolverType::SoftStep;
   SubstepBodies& sb = substepBodies;
   StageLaps laps(profiled());
-  weldClusters.find(bodies.items, movableSlots, joints.items, joints.alive);
+  weldClusters.find(bodies.items, movableSlots, joints.items, joints.alive, rigidWelds);
   sb.gather(bodies.items, movableSlots, def.gravity, h, MotionLimits::of(def, h), weldClusters,
             stepWorkers);
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
@@ -222,7 +222,6 @@ void WorldImpl::solveSubsteps(double dt) {
   laps.lap(&StepProfile::restitution);
   if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
   laps.lap(&StepProfile::positions);
-  storeSolverJoints();
   stepWorkers.stage(bodyBlocks, [&](int block, int) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
   });
@@ -235,14 +234,13 @@ void WorldImpl::colorConstraints() {
   SubstepBodies& sb = substepBodies;
   collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
   activeJointBodies.clear();  // what the colouring needs of them
-  for (const int j : activeJoints) {
-    activeJointBodies.emplace_back(joints.items[j].bodyA, joints.items[j].bodyB);
-  }
+  for (const int j : activeJoints) activeJointBodies.push_back(jointBodies[j]);
   stepColors.assign(contacts, activeJoints, activeJointBodies, sb, ContactBundles::kMinColorSize);
   contactBundles.assign(contacts, stepColors);
   // The joints, colour after colour and the overflow last, copied side by side: a colour's
   // joints are every few in slot order, and a pass over them there waited on memory at each.
-  // The copies (600 bytes a joint) in parallel blocks, each joint to its place.
+  // The copies (600 bytes a joint) in parallel blocks, each joint to its place; none when the
+  // last step left these joints there in this order (world_impl.hpp, heldJointOrder).
   scratch.jointOrder.clear();
   jointStart.assign(1, 0);
   for (int color = 0; color <= stepColors.colorCount(); ++color) {
@@ -250,20 +248,26 @@ void WorldImpl::colorConstraints() {
     scratch.jointOrder.insert(scratch.jointOrder.end(), slots.begin(), slots.end());
     jointStart.push_back(static_cast<int>(scratch.jointOrder.size()));
   }
-  const int count = static_cast<int>(scratch.jointOrder.size());
+  if (!heldJointOrder.empty() && scratch.jointOrder == heldJointOrder) return;
+  syncJoints();
+  std::swap(heldJointOrder, scratch.jointOrder);  // solverJoints hold these joints from now on
+  const std::vector<int>& order = heldJointOrder;
+  const int count = static_cast<int>(order.size());
   solverJoints.resize(static_cast<size_t>(count));
   stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
     const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
     for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
       if (k + 4 < end) {  // a colour's joints lie every few slots apart
-        prefetchWholeJoint<false>(joints.items[scratch.jointOrder[k + 4]]);
+        prefetchWholeJoint<false>(joints.items[order[k + 4]]);
       }
-      solverJoints[static_cast<size_t>(k)] = joints.items[scratch.jointOrder[k]];
+      solverJoints[static_cast<size_t>(k)] = joints.items[order[k]];
     }
   });
 }
 
-void WorldImpl::storeSolverJoints() {
+void WorldImpl::syncJoints() {
+  if (heldJointOrder.empty()) return;
+  heldJointOrder.clear();
   const int count = static_cast<int>(solverJoints.size());
   stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
     const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
