@@ -149,9 +149,10 @@ void WorldImpl::updateSleep(double dt) {
   for (const Contact& c : contacts) {
     if (isTouching(c)) link(c.bodyA, c.bodyB);
   }
-  for (const int i : movableSlots) {
-    if (bodies.items[i].type != BodyType::Dynamic) continue;
-    for (const int j : jointsOfBody[i]) link(jointBodies[j].first, jointBodies[j].second);
+  // Every joint once, in slot order (its bodies' lists would be a cache miss each): a root is
+  // always its island's lowest index, whatever the order of the links.
+  for (size_t j = 0; j < jointBodies.size(); ++j) {
+    if (joints.alive[j]) link(jointBodies[j].first, jointBodies[j].second);
   }
 
   // Each island at its root: whether a body of it is awake, then (its sleepers woken) the least
