@@ -304,6 +304,7 @@ void WorldImpl::solveJointVelocities(double dt) {
 
 void WorldImpl::solve(double dt) {
   StageLaps laps(profiled());
+  syncJoints();  // a world switched from a sub-stepping solver (settings().solver)
   collectActiveJoints([&](int slot) { return solverBodies.isActive(slot); });
   Feedback fb;  // NGS: no bias, its position pass corrects the drift
   if (def.solver == SolverType::Baumgarte) fb.rate = def.baumgarte / dt;
