@@ -370,7 +370,7 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
 bool World::destroyJoint(JointId id) {
   WorldImpl& w = *impl_;
   if (!isValid(id)) return false;
-  w.syncJoints();  // before its slot is freed (and the others' kept)
+  w.syncJoints();  // the held joints back in their slots before this one's is freed
   Joint& joint = w.joints.items[id.index];
   if (isRigidWeld(joint)) --w.rigidWelds;
   for (const int slot : {joint.bodyA, joint.bodyB}) {

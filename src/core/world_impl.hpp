@@ -339,7 +339,6 @@ struct WorldImpl {
   /// warm starting their kept impulses are dropped.
   template <class Moves>
   void collectActiveJoints(Moves moves) {
-    if (!def.warmStarting) syncJoints();  // the impulses below are dropped in joints.items
     activeJoints.clear();
     for (size_t j = 0; j < joints.items.size(); ++j) {
       if (!joints.alive[j]) continue;

@@ -232,6 +232,8 @@ void WorldImpl::solveSubsteps(double dt) {
 
 void WorldImpl::colorConstraints() {
   SubstepBodies& sb = substepBodies;
+  // Without warm starting, collectActiveJoints drops the kept impulses in the joints' slots.
+  if (!def.warmStarting) syncJoints();
   collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
   activeJointBodies.clear();  // what the colouring needs of them
   for (const int j : activeJoints) activeJointBodies.push_back(jointBodies[j]);

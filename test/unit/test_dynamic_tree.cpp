@@ -58,10 +58,10 @@ struct CheckedTree {
       }
     }
   }
-  void removeLast() {
-    tree.destroyProxy(proxies.back());
-    proxies.pop_back();
-    boxes.pop_back();
+  void removeAt(size_t i) {
+    tree.destroyProxy(proxies[i]);
+    proxies.erase(proxies.begin() + static_cast<std::ptrdiff_t>(i));
+    boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(i));
   }
 };
 
@@ -73,11 +73,7 @@ TEST(DynamicTree, QueriesMatchBruteForceThroughInsertsMovesAndRemovals) {
     checked.expectQueriesMatchScan(rng, 200);
     checked.moveEvery(rng, 0, 3, false);                 // a third moved
     for (size_t i = checked.proxies.size(); i-- > 0;) {  // a tenth removed
-      if (i % 10 == static_cast<size_t>(round)) {
-        checked.tree.destroyProxy(checked.proxies[i]);
-        checked.proxies.erase(checked.proxies.begin() + i);
-        checked.boxes.erase(checked.boxes.begin() + i);
-      }
+      if (i % 10 == static_cast<size_t>(round)) checked.removeAt(i);
     }
   }
   // A balanced binary tree of n leaves is about log2(n) deep; AVL bounds it by 1.44 log2(n).
@@ -101,7 +97,7 @@ TEST(DynamicTree, RebuiltTreeQueriesMatchBruteForceAndTakesIncrementalEditsAfter
     EXPECT_EQ(checked.tree.height(), static_cast<int>(std::ceil(std::log2(proxies.size()))));
     checked.expectQueriesMatchScan(rng, 200);
     checked.moveEvery(rng, 0, 5, false);
-    checked.removeLast();
+    checked.removeAt(proxies.size() - 1);
     checked.expectQueriesMatchScan(rng, 200);
   }
   checked.addRandom(rng, 1);
