@@ -194,18 +194,32 @@ void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
   }
 }
 
-bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
+PositionError solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b) {
   switch (joint.params.type) {
     case JointType::Revolute:
-      return solveRevolutePosition(joint, a, b, def);
+      return solveRevolutePosition(joint, a, b);
     case JointType::Prismatic:
-      return solvePrismaticPosition(joint, a, b, def);
+      return solvePrismaticPosition(joint, a, b);
     case JointType::Weld:
-      return solveWeldPosition(joint, a, b, def);
+      return solveWeldPosition(joint, a, b);
     case JointType::Distance:
-      return solveDistancePosition(joint, a, b, def);
+      return solveDistancePosition(joint, a, b);
   }
-  return true;
+  return {};
+}
+
+PositionError jointPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  switch (joint.params.type) {
+    case JointType::Revolute:
+      return revolutePositionError(joint, a, b);
+    case JointType::Prismatic:
+      return prismaticPositionError(joint, a, b);
+    case JointType::Weld:
+      return weldPositionError(joint, a, b);
+    case JointType::Distance:
+      return distancePositionError(joint, a, b);
+  }
+  return {};
 }
 
 JointState measureJoint(const Joint& joint, const Body& a, const Body& b) {

@@ -83,6 +83,9 @@ struct Joint {
   double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
   double restLength = 0.0;           // distance: the length the joint keeps (m)
+  // Soft: this step solves the joint without bias, its group having opened wider under the last
+  // step's (position_guard.hpp).
+  bool feedbackWithheld = false;
 };
 
 /// Initialises the parameters, anchors and reference angle from a validated definition.
@@ -101,8 +104,18 @@ void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimi
 /// Scales every accumulated impulse of the joint.
 void scaleJointImpulses(Joint& joint, double scale);
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
-/// One NGS position pass; returns true when the joint's error is within the slop.
-bool solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+/// How far a joint is from holding: its linear error (m) and its angular one (rad), each the
+/// largest of its rows'.
+struct PositionError {
+  double linear = 0.0, angular = 0.0;
+  bool within(double linearSlop) const { return linear <= linearSlop && angular <= kAngularSlop; }
+  /// One number for a sum over joints (m^2): a radian weighs as a metre.
+  double squared() const { return linear * linear + angular * angular; }
+};
+/// One NGS position pass; returns the error it found (before its correction).
+PositionError solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b);
+/// The error the pass would find at these poses, with nothing moved.
+PositionError jointPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
 
 // --- shared by the joint types ---
@@ -173,6 +186,12 @@ void applyJointCorrection(SolverBody& a, SolverBody& b, double px, double py, do
 /// pushed back with the pass's feedback (none with NGS: its position pass does it), at most at
 /// maxRate. `rowFb` receives the feedback the row uses.
 double limitBias(double c, const Feedback& fb, double dt, Feedback* rowFb, double maxRate);
+/// How far x lies beyond the joint's limits [lower, upper] (< 0 below, > 0 above, 0 within).
+inline double beyondLimits(double x, const JointParams& params) {
+  if (x < params.lower) return x - params.lower;
+  if (x > params.upper) return x - params.upper;
+  return 0.0;
+}
 
 /// The target rate of an equality row with linear position error c (m): -rate c, at most
 /// fb.maxPush either way.
@@ -234,24 +253,28 @@ Softness softness(double frequency, double dampingRatio, double effectiveMass, d
 void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
 void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b);
 void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
-bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+PositionError solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b);
+PositionError revolutePositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
 void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b);
 void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
-bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+PositionError solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b);
+PositionError prismaticPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 /// Position and velocity along the rail (the anchors are measureJoint's).
 JointState measurePrismatic(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
 void warmStartWeld(Joint& joint, SolverBody& a, SolverBody& b);
 void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
-bool solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+PositionError solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b);
+PositionError weldPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
 void warmStartDistance(Joint& joint, SolverBody& a, SolverBody& b);
 void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
-bool solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def);
+PositionError solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b);
+PositionError distancePositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 /// Length and its rate (the anchors are measureJoint's).
 JointState measureDistance(const Joint& joint, const SolverBody& a, const SolverBody& b);
 

@@ -124,22 +124,28 @@ void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*
   }
 }
 
-bool solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
+// How much longer the rod is than the joint allows (< 0: shorter): a rigid joint holds its rest
+// length, a spring only its limits.
+double lengthError(const Joint& joint, const Rod& rod) {
+  if (!isSpring(joint)) return rod.length - joint.restLength;
+  if (rod.length < joint.params.minLength) return rod.length - joint.params.minLength;
+  if (rod.length > joint.params.maxLength) return rod.length - joint.params.maxLength;
+  return 0.0;
+}
+
+PositionError solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b) {
   const Rod rod = rodOf(joint, a, b);
-  double c = 0.0;
-  if (!isSpring(joint)) {
-    c = rod.length - joint.restLength;
-  } else if (rod.length < joint.params.minLength) {
-    c = rod.length - joint.params.minLength;
-  } else if (rod.length > joint.params.maxLength) {
-    c = rod.length - joint.params.maxLength;
-  }
+  const double c = lengthError(joint, rod);
   const double k = rod.axis.isZero() ? 0.0 : inverseMassOf(rod, a, b);
   if (c != 0.0 && k > 0.0) {
     const double impulse = -std::clamp(c, -kMaxLinearCorrection, kMaxLinearCorrection) / k;
     applyJointCorrection(a, b, impulse * rod.axis, rod.armA * impulse, rod.armB * impulse);
   }
-  return std::abs(c) <= def.linearSlop;
+  return {std::abs(c), 0.0};
+}
+
+PositionError distancePositionError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  return {std::abs(lengthError(joint, rodOf(joint, a, b))), 0.0};
 }
 
 JointState measureDistance(const Joint& joint, const SolverBody& a, const SolverBody& b) {

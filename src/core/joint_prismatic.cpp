@@ -155,14 +155,11 @@ void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double d
   applyRows(joint, a, b, impulse.x(), impulse.y(), 0.0);
 }
 
-bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
+PositionError solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b) {
   storeRail(joint, railOf(joint, a, b), a, b);
   double limitError = 0.0;
   if (joint.params.enableLimit) {
-    const double x = joint.axialPosition;
-    double c = 0.0;
-    if (x < joint.params.lower) c = x - joint.params.lower;
-    if (x > joint.params.upper) c = x - joint.params.upper;
+    double c = beyondLimits(joint.axialPosition, joint.params);
     limitError = std::abs(c);
     if (c != 0.0) {
       c = std::clamp(c, -kMaxLinearCorrection, kMaxLinearCorrection);
@@ -182,7 +179,15 @@ bool solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b, const Wo
   applyJointCorrection(a, b, impulse.x() * joint.normal,
                        joint.normalArmA * impulse.x() + impulse.y(),
                        joint.normalArmB * impulse.x() + impulse.y());
-  return linearError <= def.linearSlop && angularError <= kAngularSlop;
+  return {linearError, angularError};
+}
+
+PositionError prismaticPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  const Rail rail = railOf(joint, a, b);
+  const double limit =
+      joint.params.enableLimit ? beyondLimits(rail.axis.dot(rail.d), joint.params) : 0.0;
+  return {std::max(std::abs(limit), std::abs(rail.normal.dot(rail.d))),
+          std::abs(b.angle - a.angle - joint.referenceAngle)};
 }
 
 JointState measurePrismatic(const Joint& joint, const SolverBody& a, const SolverBody& b) {

@@ -115,13 +115,17 @@ void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt
   applyImpulse(a, b, px, py, rA.x() * py - rA.y() * px, rB.x() * py - rB.y() * px);
 }
 
-bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
+// The limit's angular error (rad) at these poses: none without a limit or when the bodies cannot
+// turn against each other.
+double revoluteLimitError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  if (!joint.params.enableLimit || !(joint.axialMass > 0.0)) return 0.0;
+  return beyondLimits(b.angle - a.angle - joint.referenceAngle, joint.params);
+}
+
+PositionError solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b) {
   double angularError = 0.0;
   if (joint.params.enableLimit && joint.axialMass > 0.0) {
-    const double angle = b.angle - a.angle - joint.referenceAngle;
-    double c = 0.0;
-    if (angle < joint.params.lower) c = angle - joint.params.lower;
-    if (angle > joint.params.upper) c = angle - joint.params.upper;
+    double c = revoluteLimitError(joint, a, b);
     angularError = std::abs(c);
     c = std::clamp(c, -kMaxAngularCorrection, kMaxAngularCorrection);
     const double impulse = -joint.axialMass * c;
@@ -140,7 +144,12 @@ bool solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b, const Wor
   const double px = -(k(0, 0) * cx + k(0, 1) * cy);
   const double py = -(k(1, 0) * cx + k(1, 1) * cy);
   applyJointCorrection(a, b, px, py, g.rAx * py - g.rAy * px, g.rBx * py - g.rBy * px);
-  return linearError <= def.linearSlop && angularError <= kAngularSlop;
+  return {linearError, angularError};
+}
+
+PositionError revolutePositionError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  const AnchorGap g = anchorGap(joint, a, b);
+  return {std::sqrt(g.gapX * g.gapX + g.gapY * g.gapY), std::abs(revoluteLimitError(joint, a, b))};
 }
 
 }  // namespace impulse2d

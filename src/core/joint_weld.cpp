@@ -111,10 +111,21 @@ void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/
   applyPointAndAngle(joint, a, b, point, impulse.z());
 }
 
-bool solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& def) {
+// The arms from each centre of mass to the anchor and the gap between the anchors.
+struct WeldGap {
+  Vec2 rA, rB, gap;
+};
+WeldGap weldGap(const Joint& joint, const SolverBody& a, const SolverBody& b) {
   const Vec2 rA = a.q.apply(joint.localAnchorA - a.localCenter);
   const Vec2 rB = b.q.apply(joint.localAnchorB - b.localCenter);
-  Vec2 gap = (b.center + rB) - (a.center + rA);
+  return {rA, rB, (b.center + rB) - (a.center + rA)};
+}
+
+PositionError solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b) {
+  const WeldGap w = weldGap(joint, a, b);
+  const Vec2& rA = w.rA;
+  const Vec2& rB = w.rB;
+  Vec2 gap = w.gap;
   const double linearError = gap.norm();
   if (linearError > kMaxLinearCorrection) gap *= kMaxLinearCorrection / linearError;
   const Eigen::Matrix3d k = blockMatrix(a, b, rA, rB);
@@ -133,7 +144,13 @@ bool solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b, const WorldDe
     angular = impulse.z();
   }
   applyJointCorrection(a, b, p, cross(rA, p) + angular, cross(rB, p) + angular);
-  return linearError <= def.linearSlop && angularError <= kAngularSlop;
+  return {linearError, angularError};
+}
+
+PositionError weldPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
+  // A soft weld's angle is a spring's: the pass leaves it alone.
+  const double angle = isSoft(joint) ? 0.0 : b.angle - a.angle - joint.referenceAngle;
+  return {weldGap(joint, a, b).gap.norm(), std::abs(angle)};
 }
 
 }  // namespace impulse2d

@@ -9,6 +9,7 @@
 #include "distance.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
+#include "position_guard.hpp"
 #include "solver_body.hpp"
 #include "stage_clock.hpp"
 #include "step_workers.hpp"
@@ -147,7 +148,10 @@ struct StepScratch {
   std::vector<std::pair<Vec2, double>> onePassStarts;
   // Sub-steps' NGS passes (world_substeps.cpp): by worker, its verdicts.
   std::vector<char> workerJointsOk;
-  std::vector<double> workerDeepest;
+  std::vector<double> workerWidest, workerDeepest;
+  // Both NGS paths' guard (position_guard.hpp): the moving bodies' rows before the passes.
+  std::vector<BodyState> guardedStates;
+  std::vector<SolverBody> guardedBodies;
   // Keeping out of static bodies (keep_out_of_static.cpp): the deep bodies; by welded cluster,
   // its first push out this step.
   std::vector<DeepStatic> deepStatic;
@@ -252,7 +256,9 @@ struct WorldImpl {
   std::vector<FastCluster> fastClusters;
   WeldClusters weldClusters;  // this step's (weld_clusters.hpp)
   WarmStartGuard warmStartGuard;
-  std::vector<int> activeJoints;  // joints with an awake dynamic body, this step
+  PositionGuard positionGuard;       // of the NGS passes and soft's bias (position_guard.hpp)
+  bool anyFeedbackWithheld = false;  // some joint's this step (Joint::feedbackWithheld)
+  std::vector<int> activeJoints;     // joints with an awake dynamic body, this step
   StepScratch scratch;
   double time = 0.0;
   uint64_t steps = 0;
@@ -332,6 +338,15 @@ struct WorldImpl {
   /// The step's summed impulses back into the contacts.
   void storeBundles();
   void correctSubstepPositions(const BundlePass& pass);
+  // The position guard (position_guard.hpp, world_position_guard.cpp).
+  using JointErrorNote = std::function<void(int entryA, int entryB, double squaredError)>;
+  /// The solving joints in the order of this step's solver (colour order or slot order), each
+  /// with its bodies' dynamic entries (-1 for a body not moved) and its squared error now.
+  void visitJointErrors(const JointErrorNote& note);
+  /// The soft step, as its sub-steps begin and after them: a group whose joints opened wider
+  /// solves its next step without bias.
+  void measureSoftStepStart();
+  void withholdFeedbackOfWorseGroups();
   /// The bodies that moved farther than the speculative margin, for continuous collision.
   void findFastSubstepBodies();
   /// Lists the joints the step solves (both solver paths): those with a body for which

@@ -409,14 +409,33 @@ void WorldImpl::noteIfFast(const ClusterRows& rows, int row, int slot, const Vec
 void WorldImpl::correctPositions() {
   const StageClock clock(stage(&StepProfile::positions));
   if (def.solver != SolverType::NonlinearGaussSeidel) return;
+  const auto visitJoints = [&](const auto& note) { visitJointErrors(note); };
+  const bool guarded = positionGuard.armed();  // position_guard.hpp
+  double widest = 0.0;                         // the widest joint error the last pass met
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
+    if (guarded) {
+      positionGuard.measureBefore(solverBodies.dynamicCount(), visitJoints, iteration == 0);
+      scratch.guardedBodies.assign(solverBodies.data(),
+                                   solverBodies.data() + solverBodies.dynamicCount());
+    }
     bool jointsOk = true;
-    onActiveJoints([&](Joint& j, SolverBody& a,
-                       SolverBody& b) { jointsOk &= solveJointPosition(j, a, b, def); },
-                   true);
+    widest = 0.0;
+    onActiveJoints(
+        [&](Joint& j, SolverBody& a, SolverBody& b) {
+          const PositionError error = solveJointPosition(j, a, b);
+          widest = std::max({widest, error.linear, error.angular});
+          jointsOk = jointsOk && error.within(def.linearSlop);
+        },
+        true);
+    if (guarded) {  // the joints' part of the pass is kept only where it closed them
+      positionGuard.keepOrRestore(
+          visitJoints, [&](int entry) { solverBodies[entry] = scratch.guardedBodies[entry]; },
+          [&](size_t j) { scaleJointImpulses(joints.items[activeJoints[j]], 0.0); });
+    }
     const bool contactsOk = contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;
   }
+  positionGuard.settle(widest);
 }
 
 void WorldImpl::clearForces() {

@@ -150,6 +150,7 @@ void WorldImpl::solveSubsteps(double dt) {
   laps.lap(&StepProfile::prepare);
   colorConstraints();
   laps.lap(&StepProfile::coloring);
+  if (soft) measureSoftStepStart();
   BundlePass pass = bundlePass(h);
   fillBundles(dt, substeps, soft);
   laps.lap(&StepProfile::prepare);
@@ -170,7 +171,7 @@ void WorldImpl::solveSubsteps(double dt) {
   const bool preparedByRelax = !soft && def.warmStarting;
   bool prepares = true;  // this sub-step's warm start prepares the joints' rows (reads poses)
   const auto prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
-    if (prepares) prepareJoint(j, a, b, def, firstFeedback, h);
+    if (prepares) prepareJoint(j, a, b, def, j.feedbackWithheld ? rigid : firstFeedback, h);
     warmStartJoint(j, a, b, motionLimits);
   };
   const auto solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
@@ -220,7 +221,11 @@ void WorldImpl::solveSubsteps(double dt) {
   overColors<JointAccess::Velocities>(nullptr, kernel(restituteBundles), pass);
   storeBundles();
   laps.lap(&StepProfile::restitution);
-  if (def.solver == SolverType::SubstepNgs) correctSubstepPositions(pass);
+  if (soft) {
+    withholdFeedbackOfWorseGroups();
+  } else {
+    correctSubstepPositions(pass);
+  }
   laps.lap(&StepProfile::positions);
   stepWorkers.stage(bodyBlocks, [&](int block, int) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
@@ -347,27 +352,47 @@ void WorldImpl::findFastSubstepBodies() {
 // 3 slops. Each thread keeps its own verdicts: AND and min do not depend on the order.
 void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
   const size_t workers = static_cast<size_t>(stepWorkers.threads());
+  SubstepBodies& sb = substepBodies;
+  const auto visitJoints = [&](const auto& note) { visitJointErrors(note); };
+  const bool guarded = positionGuard.armed();  // position_guard.hpp
+  double widest = 0.0;                         // the widest joint error the last pass met
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
     scratch.workerJointsOk.assign(workers, 1);
+    scratch.workerWidest.assign(workers, 0.0);
     scratch.workerDeepest.assign(workers, 0.0);
     const auto jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
-      if (!solveJointPosition(j, a, b, def))
-        scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
+      const PositionError error = solveJointPosition(j, a, b);
+      double& w = scratch.workerWidest[static_cast<size_t>(worker)];
+      w = std::max({w, error.linear, error.angular});
+      if (!error.within(def.linearSlop)) scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
     };
     const BundleOp contactPositions = [&](const BundlePass& p, int begin, int end, bool oneByOne,
                                           int worker) {
       double& deepest = scratch.workerDeepest[static_cast<size_t>(worker)];
       deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
     };
-    overColors<JointAccess::WritePoses>(jointPositions, contactPositions, pass);
+    if (guarded) {  // the joints' part of the pass is kept only where it closed them
+      positionGuard.measureBefore(sb.dynamicCount(), visitJoints, iteration == 0);
+      scratch.guardedStates.assign(sb.states(), sb.states() + sb.dynamicCount());
+      overColors<JointAccess::WritePoses>(jointPositions, BundleOp(), pass);
+      positionGuard.keepOrRestore(
+          visitJoints, [&](int entry) { sb.state(entry) = scratch.guardedStates[entry]; },
+          [&](size_t j) { scaleJointImpulses(solverJoints[j], 0.0); });
+      overColors<JointAccess::WritePoses>(nullptr, contactPositions, pass);
+    } else {
+      overColors<JointAccess::WritePoses>(jointPositions, contactPositions, pass);
+    }
     bool jointsOk = true;
     double deepest = 0.0;
+    widest = 0.0;
     for (size_t w = 0; w < workers; ++w) {
       jointsOk = jointsOk && scratch.workerJointsOk[w];
+      widest = std::max(widest, scratch.workerWidest[w]);
       deepest = std::min(deepest, scratch.workerDeepest[w]);
     }
     if (jointsOk && overlapsResolved(deepest, def.linearSlop)) break;
   }
+  positionGuard.settle(widest);
 }
 
 }  // namespace impulse2d
