@@ -34,6 +34,7 @@
 #pragma once
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace impulse2d {
@@ -68,11 +69,12 @@ class PositionGuard {
     close();
     armed_ = false;
     if (restOneStep()) return;
+    record(visit, true);
     double widest = 0.0;
-    visit([&](int, int, double error) { widest = std::max(widest, error); });
+    for (const double error : jointErrors_) widest = std::max(widest, error);
     armed_ = widest > kJudgedError * kJudgedError;
     if (armed_) {
-      measureBefore(entryCount, visit);
+      sumBefore(entryCount, true);  // the sweep's errors are the step's start
     } else {
       rest();
     }
@@ -83,29 +85,8 @@ class PositionGuard {
   /// groups stay and only the errors are measured anew.
   template <class Visit>
   void measureBefore(int entryCount, const Visit& visit, bool regroup = true) {
-    if (regroup) {
-      parent_.resize(static_cast<size_t>(entryCount));
-      for (int e = 0; e < entryCount; ++e) parent_[e] = e;
-      jointGroups_.clear();
-    }
-    // Linked first, summed after: a joint's group is known only once every joint is linked.
-    jointErrors_.clear();
-    visit([&](int a, int b, double error) {
-      if (regroup) {
-        if (a >= 0 && b >= 0) link(a, b);
-        jointGroups_.push_back(a >= 0 ? a : b);
-      }
-      jointErrors_.push_back(error);
-    });
-    before_.assign(static_cast<size_t>(entryCount), 0.0);
-    counts_.assign(static_cast<size_t>(entryCount), 0);
-    for (size_t j = 0; j < jointGroups_.size(); ++j) {
-      if (jointGroups_[j] >= 0) {
-        const int g = root(jointGroups_[j]);
-        before_[g] += jointErrors_[j];
-        ++counts_[g];
-      }
-    }
+    record(visit, regroup);
+    sumBefore(entryCount, regroup);
   }
 
   /// After the feedback: visit as above (the same joints, in the same order). A group whose error
@@ -130,6 +111,38 @@ class PositionGuard {
   }
 
  private:
+  // One sweep: each joint's error and, when regrouping, its two entries.
+  template <class Visit>
+  void record(const Visit& visit, bool regroup) {
+    jointErrors_.clear();
+    if (regroup) jointEntries_.clear();
+    visit([&](int a, int b, double error) {
+      if (regroup) jointEntries_.emplace_back(a, b);
+      jointErrors_.push_back(error);
+    });
+  }
+  // Groups the recorded joints' entries [0, entryCount) when regrouping (linked first, counted
+  // after: a joint's group is known only once every joint is linked), then sums each group's
+  // recorded error.
+  void sumBefore(int entryCount, bool regroup) {
+    if (regroup) {
+      parent_.resize(static_cast<size_t>(entryCount));
+      for (int e = 0; e < entryCount; ++e) parent_[e] = e;
+      jointGroups_.clear();
+      for (const auto& [a, b] : jointEntries_) {
+        if (a >= 0 && b >= 0) link(a, b);
+        jointGroups_.push_back(a >= 0 ? a : b);
+      }
+      counts_.assign(static_cast<size_t>(entryCount), 0);
+      for (const int e : jointGroups_) {
+        if (e >= 0) ++counts_[root(e)];
+      }
+    }
+    before_.assign(static_cast<size_t>(entryCount), 0.0);
+    for (size_t j = 0; j < jointGroups_.size(); ++j) {
+      if (jointGroups_[j] >= 0) before_[root(jointGroups_[j])] += jointErrors_[j];
+    }
+  }
   // After a guarded step: one that found a group worse keeps the guard on; one that did not rests
   // it for longer each time.
   void close() {
@@ -168,10 +181,13 @@ class PositionGuard {
   bool armed_ = false, foundWorse_ = false;
   int restSteps_ = 0, restLength_ = 0;  // steps left in the rest, and its length
   std::vector<int> parent_;             // union-find over the entries
-  std::vector<int> jointGroups_;        // by joint: an entry of its group, or -1 (moves no body)
+  // By joint: its entries (-1: a body the step does not move), an entry of its group (-1: it
+  // moves no body), its error.
+  std::vector<std::pair<int, int>> jointEntries_;
+  std::vector<int> jointGroups_;
   std::vector<double> jointErrors_;
-  std::vector<double> before_, after_;
-  std::vector<int> counts_;  // by group root: the summed error
+  std::vector<double> before_, after_;  // by group root: the summed error
+  std::vector<int> counts_;             // by group root: its joints
 };
 
 }  // namespace impulse2d
