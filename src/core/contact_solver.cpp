@@ -54,10 +54,21 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
   pushedSlots_.clear();
 }
 
-bool ContactSolver::pressesCrushed(const Contact& contact, const SolverBodies& bodies) const {
+void ContactSolver::withholdPush(int slot) {
+  const size_t needed = static_cast<size_t>(slot) + 1;
+  if (unpushed_.size() < needed) unpushed_.resize(needed, 0);
+  if (!unpushed_[static_cast<size_t>(slot)]) unpushedSlots_.push_back(slot);
+  unpushed_[static_cast<size_t>(slot)] = 1;
+}
+
+bool ContactSolver::getsNoPush(const Contact& contact, const SolverBodies& bodies) const {
   auto crushed = [&](int slot) {
     return static_cast<size_t>(slot) < crushed_.size() && crushed_[static_cast<size_t>(slot)];
   };
+  auto unpushed = [&](int slot) {
+    return static_cast<size_t>(slot) < unpushed_.size() && unpushed_[static_cast<size_t>(slot)];
+  };
+  if (unpushed(contact.bodyA) || unpushed(contact.bodyB)) return true;
   return (crushed(contact.bodyA) && !bodies.isActive(contact.bodyB)) ||
          (crushed(contact.bodyB) && !bodies.isActive(contact.bodyA));
 }
@@ -94,7 +105,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     c.restitution = contact.restitution;
     c.pointCount = m.pointCount;
     const Vec2 tangent = perp(m.normal);
-    const bool push = baumgarte && !pressesCrushed(contact, bodies);
+    const bool push = baumgarte && !getsNoPush(contact, bodies);
     for (int i = 0; i < m.pointCount; ++i) {
       const ManifoldPoint& mp = m.points[i];
       ContactConstraintPoint& p = c.points[i];
@@ -144,6 +155,8 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       }
     }
   }
+  for (const int slot : unpushedSlots_) unpushed_[static_cast<size_t>(slot)] = 0;
+  unpushedSlots_.clear();
 }
 
 void ContactSolver::warmStart() {

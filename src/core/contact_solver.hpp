@@ -62,6 +62,9 @@ class ContactSolver {
   /// adds read-only entries to `bodies` for the others they touch.
   void prepare(std::vector<Contact>& contacts, SolverBodies& bodies, const WorldDef& def,
                double dt);
+  /// Baumgarte: the body in `slot` gets no push out of its overlaps this step (its joints are
+  /// solved without bias too: world_step.cpp, splitStressedJoints). Cleared by prepare().
+  void withholdPush(int slot);
   void warmStart();
   void solveVelocities();
   /// Bounces points that approached faster than the threshold, once, after the iterations.
@@ -84,14 +87,17 @@ class ContactSolver {
   /// Baumgarte: marks crushed_ (by slot) the bodies pressed into overlaps from opposite sides
   /// by bodies the step does not move.
   void findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies);
-  /// Whether the contact presses a crushed body against a body the step does not move.
-  bool pressesCrushed(const Contact& contact, const SolverBodies& bodies) const;
+  /// Whether the contact gets no push out of its overlap: it presses a crushed body against a
+  /// body the step does not move, or touches a body whose push is withheld (withholdPush).
+  bool getsNoPush(const Contact& contact, const SolverBodies& bodies) const;
 
   std::vector<ContactConstraint> constraints_;
   std::vector<ContactConstraintExtra> extras_;   // by constraint
   std::vector<Vec2> pushOfSlot_;                 // findCrushed's scratch: the first push seen
   std::vector<char> crushed_;                    // by slot, this step (baumgarte)
   std::vector<int> pushedSlots_, crushedSlots_;  // the slots set in each, to clear only them
+  std::vector<char> unpushed_;                   // by slot, this step (withholdPush)
+  std::vector<int> unpushedSlots_;
 };
 
 }  // namespace impulse2d

@@ -83,8 +83,8 @@ struct Joint {
   double referenceAngle = 0.0;                                    // angle B - angle A at creation
   Vec2 localAxisA = Vec2(1.0, 0.0);  // prismatic: unit slide direction in A's frame
   double restLength = 0.0;           // distance: the length the joint keeps (m)
-  // Soft: this step solves the joint without bias, its group having opened wider under the last
-  // step's (position_guard.hpp).
+  // This step solves the joint without bias (position_guard.hpp): soft, its group having opened
+  // wider under the last step's; baumgarte, its group being far open (read only by prepare).
   bool feedbackWithheld = false;
 };
 

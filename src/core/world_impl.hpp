@@ -152,6 +152,8 @@ struct StepScratch {
   // Both NGS paths' guard (position_guard.hpp): the moving bodies' rows before the passes.
   std::vector<BodyState> guardedStates;
   std::vector<SolverBody> guardedBodies;
+  // Baumgarte's split joints (world_step.cpp, splitStressedJoints): their slots.
+  std::vector<int> splitJoints;
   // Keeping out of static bodies (keep_out_of_static.cpp): the deep bodies; by welded cluster,
   // its first push out this step.
   std::vector<DeepStatic> deepStatic;
@@ -343,10 +345,17 @@ struct WorldImpl {
   /// The solving joints in the order of this step's solver (colour order or slot order), each
   /// with its bodies' dynamic entries (-1 for a body not moved) and its squared error now.
   void visitJointErrors(const JointErrorNote& note);
+  /// The same for the one-pass solvers' joints in these slots.
+  void visitOnePassJointErrors(const std::vector<int>& slots, const JointErrorNote& note);
   /// The soft step, as its sub-steps begin and after them: a group whose joints opened wider
   /// solves its next step without bias.
   void measureSoftStepStart();
   void withholdFeedbackOfWorseGroups();
+  /// Baumgarte: the joints of groups open wider than joints that can all hold (PositionGuard's
+  /// judged groups) are solved without bias, their bodies' contacts without push, and the
+  /// joints are closed by guarded NGS passes after the positions move.
+  void splitStressedJoints();
+  void correctSplitJoints();
   /// The bodies that moved farther than the speculative margin, for continuous collision.
   void findFastSubstepBodies();
   /// Lists the joints the step solves (both solver paths): those with a body for which

@@ -14,11 +14,15 @@ void WorldImpl::visitJointErrors(const JointErrorNote& note) {
     }
     return;
   }
+  visitOnePassJointErrors(activeJoints, note);
+}
+
+void WorldImpl::visitOnePassJointErrors(const std::vector<int>& slots, const JointErrorNote& note) {
   const auto dynamicEntry = [&](int slot) {
     const int entry = solverBodies.movingEntryOf(slot);
     return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
   };
-  for (const int j : activeJoints) {
+  for (const int j : slots) {
     const Joint& joint = joints.items[j];
     note(dynamicEntry(joint.bodyA), dynamicEntry(joint.bodyB),
          jointPositionError(joint, solverBodies.view(joint.bodyA), solverBodies.view(joint.bodyB))

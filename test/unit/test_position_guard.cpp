@@ -96,5 +96,33 @@ TEST(PositionGuard, ArmsOnWideJointsAndRestsAfterStepsWithNothingWorse) {
   EXPECT_TRUE(guard.armed()) << "a step that found a group worse does not rest";
 }
 
+// Baumgarte's step start: the joints of groups far open on average are judged, whole; without
+// rests the guard sweeps every step, however quiet the last ones were.
+TEST(PositionGuard, JudgesWholeGroupsAtTheStepStartAndSweepsEveryStepWithoutRests) {
+  PositionGuard guard;
+  // Group {0, 1, 2}: 2 kFar + 0 over two joints, 1 kFar each, not judged; group {3, 4, 5}:
+  // 4 kFar + 0 + 0.5 kFar over three joints, 1.5 kFar each, judged with all three joints.
+  const std::vector<Link> links = {
+      {0, 1, 2 * kFar}, {1, 2, 0.0}, {3, 4, 4 * kFar}, {4, 5, 0.0}, {5, -1, 0.5 * kFar}};
+  const auto judged = [&](bool rests) {
+    guard.measureStepStart(6, visitOf(links), rests);
+    std::set<int> joints;
+    if (guard.armed()) guard.forEachJudgedJoint([&](size_t j) { joints.insert(int(j)); });
+    return joints;
+  };
+  EXPECT_EQ(judged(false), (std::set<int>{2, 3, 4}));
+  const std::vector<Link> quiet = {{0, 1, 0.0}};
+  for (int step = 0; step < 3; ++step) {
+    guard.measureStepStart(2, visitOf(quiet), false);
+    EXPECT_FALSE(guard.armed()) << "no joint wide, step " << step;
+  }
+  EXPECT_EQ(judged(false), (std::set<int>{2, 3, 4})) << "swept at once after quiet steps";
+  // With rests (soft), a quiet step rests the sweep: the wide joints are not seen the next step.
+  guard = PositionGuard();
+  guard.measureStepStart(2, visitOf(quiet), true);
+  EXPECT_TRUE(judged(true).empty()) << "resting";
+  EXPECT_EQ(judged(true), (std::set<int>{2, 3, 4})) << "rested one step";
+}
+
 }  // namespace
 }  // namespace impulse2d
