@@ -353,9 +353,17 @@ struct WorldImpl {
   void withholdFeedbackOfWorseGroups();
   /// Baumgarte: the joints of groups open wider than joints that can all hold (PositionGuard's
   /// judged groups) are solved without bias, their bodies' contacts without push, and the
-  /// joints are closed by guarded NGS passes after the positions move.
+  /// joints are closed by guarded NGS passes after the positions move (correctPositions).
   void splitStressedJoints();
-  void correctSplitJoints();
+  /// What the one-pass solvers' NGS passes do besides moving the joints they are given.
+  struct PositionPasses {
+    bool guarded = false;        // each pass's joint corrections kept only where they closed
+    bool forgetImpulses = true;  // ... and the joint impulses of a group they opened forgotten
+    bool contacts = true;        // each pass also pushes overlapping contacts apart
+  };
+  /// Up to positionIterations passes over the joints in `slots` (and the contacts); returns the
+  /// widest joint error the last pass met.
+  double runPositionPasses(const std::vector<int>& slots, const PositionPasses& passes);
   /// The bodies that moved farther than the speculative margin, for continuous collision.
   void findFastSubstepBodies();
   /// Lists the joints the step solves (both solver paths): those with a body for which

@@ -414,38 +414,50 @@ void WorldImpl::noteIfFast(const ClusterRows& rows, int row, int slot, const Vec
 
 void WorldImpl::correctPositions() {
   const StageClock clock(stage(&StepProfile::positions));
-  if (def.solver == SolverType::Baumgarte) {
-    correctSplitJoints();
+  if (def.solver == SolverType::Baumgarte) {  // only its far-open groups (splitStressedJoints)
+    PositionPasses split;
+    split.guarded = true;
+    split.contacts = split.forgetImpulses = false;  // kept: see position_guard.hpp
+    if (!scratch.splitJoints.empty()) runPositionPasses(scratch.splitJoints, split);
     return;
   }
   if (def.solver != SolverType::NonlinearGaussSeidel) return;
-  const auto visitJoints = [&](const auto& note) { visitJointErrors(note); };
-  const bool guarded = positionGuard.armed();  // position_guard.hpp
-  double widest = 0.0;                         // the widest joint error the last pass met
+  PositionPasses all;
+  all.guarded = positionGuard.armed();  // position_guard.hpp
+  positionGuard.settle(runPositionPasses(activeJoints, all));
+}
+
+double WorldImpl::runPositionPasses(const std::vector<int>& slots, const PositionPasses& passes) {
+  const auto visitJoints = [&](const auto& note) { visitOnePassJointErrors(slots, note); };
+  double widest = 0.0;  // the widest joint error the last pass met
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
-    if (guarded) {
+    if (passes.guarded) {
       positionGuard.measureBefore(solverBodies.dynamicCount(), visitJoints, iteration == 0);
       scratch.guardedBodies.assign(solverBodies.data(),
                                    solverBodies.data() + solverBodies.dynamicCount());
     }
     bool jointsOk = true;
     widest = 0.0;
-    onActiveJoints(
-        [&](Joint& j, SolverBody& a, SolverBody& b) {
-          const PositionError error = solveJointPosition(j, a, b);
-          widest = std::max({widest, error.linear, error.angular});
-          jointsOk = jointsOk && error.within(def.linearSlop);
-        },
-        true);
-    if (guarded) {  // the joints' part of the pass is kept only where it closed them
+    for (const int j : slots) {
+      Joint& joint = joints.items[j];
+      SolverBody a = solverBodies.view(joint.bodyA), b = solverBodies.view(joint.bodyB);
+      const PositionError error = solveJointPosition(joint, a, b);
+      widest = std::max({widest, error.linear, error.angular});
+      jointsOk = jointsOk && error.within(def.linearSlop);
+      solverBodies.store(joint.bodyA, a, true);
+      solverBodies.store(joint.bodyB, b, true);
+    }
+    if (passes.guarded) {  // the joints' part of the pass is kept only where it closed them
       positionGuard.keepOrRestore(
           visitJoints, [&](int entry) { solverBodies[entry] = scratch.guardedBodies[entry]; },
-          [&](size_t j) { scaleJointImpulses(joints.items[activeJoints[j]], 0.0); });
+          [&](size_t k) {
+            if (passes.forgetImpulses) scaleJointImpulses(joints.items[slots[k]], 0.0);
+          });
     }
-    const bool contactsOk = contactSolver.solvePositions(def);
+    const bool contactsOk = !passes.contacts || contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;
   }
-  positionGuard.settle(widest);
+  return widest;
 }
 
 // Baumgarte's bias is momentum: a group of joints that cannot all hold, pushed by it, flew (a
@@ -465,30 +477,6 @@ void WorldImpl::splitStressedJoints() {
       if (solverBodies.isActive(slot)) contactSolver.withholdPush(slot);
     }
   });
-}
-
-void WorldImpl::correctSplitJoints() {
-  const std::vector<int>& split = scratch.splitJoints;
-  if (split.empty()) return;
-  // The judged groups are whole, so the split joints alone make the same groups.
-  const auto visitJoints = [&](const auto& note) { visitOnePassJointErrors(split, note); };
-  for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
-    positionGuard.measureBefore(solverBodies.dynamicCount(), visitJoints, iteration == 0);
-    scratch.guardedBodies.assign(solverBodies.data(),
-                                 solverBodies.data() + solverBodies.dynamicCount());
-    bool jointsOk = true;
-    for (const int j : split) {
-      Joint& joint = joints.items[j];
-      SolverBody a = solverBodies.view(joint.bodyA), b = solverBodies.view(joint.bodyB);
-      jointsOk = solveJointPosition(joint, a, b).within(def.linearSlop) && jointsOk;
-      solverBodies.store(joint.bodyA, a, true);
-      solverBodies.store(joint.bodyB, b, true);
-    }
-    positionGuard.keepOrRestore(
-        visitJoints, [&](int entry) { solverBodies[entry] = scratch.guardedBodies[entry]; },
-        [](size_t) {});
-    if (jointsOk) break;
-  }
 }
 
 void WorldImpl::clearForces() {
