@@ -110,6 +110,18 @@ class PositionGuard {
     sumBefore(entryCount, regroup);
   }
 
+  /// One guarded pass of the NGS solvers: measures the groups (regrouping on a step's first pass),
+  /// lets snapshot() save the poses and moveJoints() run the joints' part of the pass, then
+  /// keepOrRestore(visit, restore, forget).
+  template <class Visit, class Snapshot, class MoveJoints, class Restore, class Forget>
+  void guardPass(int entryCount, const Visit& visit, bool firstPass, const Snapshot& snapshot,
+                 const MoveJoints& moveJoints, const Restore& restore, const Forget& forget) {
+    measureBefore(entryCount, visit, firstPass);
+    snapshot();
+    moveJoints();
+    keepOrRestore(visit, restore, forget);
+  }
+
   /// After the feedback: visit as above (the same joints, in the same order). A group whose error
   /// grew gets restore(entry) for each of its entries and forget(joint) for each of its joints
   /// (the joint'th that visit met).

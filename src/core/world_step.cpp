@@ -431,28 +431,32 @@ double WorldImpl::runPositionPasses(const std::vector<int>& slots, const Positio
   const auto visitJoints = [&](const auto& note) { visitOnePassJointErrors(slots, note); };
   double widest = 0.0;  // the widest joint error the last pass met
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
-    if (passes.guarded) {
-      positionGuard.measureBefore(solverBodies.dynamicCount(), visitJoints, iteration == 0);
-      scratch.guardedBodies.assign(solverBodies.data(),
-                                   solverBodies.data() + solverBodies.dynamicCount());
-    }
     bool jointsOk = true;
     widest = 0.0;
-    for (const int j : slots) {
-      Joint& joint = joints.items[j];
-      SolverBody a = solverBodies.view(joint.bodyA), b = solverBodies.view(joint.bodyB);
-      const PositionError error = solveJointPosition(joint, a, b);
-      widest = std::max({widest, error.linear, error.angular});
-      jointsOk = jointsOk && error.within(def.linearSlop);
-      solverBodies.store(joint.bodyA, a, true);
-      solverBodies.store(joint.bodyB, b, true);
-    }
+    const auto moveJoints = [&] {
+      for (const int j : slots) {
+        Joint& joint = joints.items[j];
+        SolverBody a = solverBodies.view(joint.bodyA), b = solverBodies.view(joint.bodyB);
+        const PositionError error = solveJointPosition(joint, a, b);
+        widest = std::max({widest, error.linear, error.angular});
+        jointsOk = jointsOk && error.within(def.linearSlop);
+        solverBodies.store(joint.bodyA, a, true);
+        solverBodies.store(joint.bodyB, b, true);
+      }
+    };
     if (passes.guarded) {  // the joints' part of the pass is kept only where it closed them
-      positionGuard.keepOrRestore(
-          visitJoints, [&](int entry) { solverBodies[entry] = scratch.guardedBodies[entry]; },
+      positionGuard.guardPass(
+          solverBodies.dynamicCount(), visitJoints, iteration == 0,
+          [&] {
+            scratch.guardedBodies.assign(solverBodies.data(),
+                                         solverBodies.data() + solverBodies.dynamicCount());
+          },
+          moveJoints, [&](int entry) { solverBodies[entry] = scratch.guardedBodies[entry]; },
           [&](size_t k) {
             if (passes.forgetImpulses) scaleJointImpulses(joints.items[slots[k]], 0.0);
           });
+    } else {
+      moveJoints();
     }
     const bool contactsOk = !passes.contacts || contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;

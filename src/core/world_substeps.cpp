@@ -372,11 +372,11 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
       deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
     };
     if (guarded) {  // the joints' part of the pass is kept only where it closed them
-      positionGuard.measureBefore(sb.dynamicCount(), visitJoints, iteration == 0);
-      scratch.guardedStates.assign(sb.states(), sb.states() + sb.dynamicCount());
-      overColors<JointAccess::WritePoses>(jointPositions, BundleOp(), pass);
-      positionGuard.keepOrRestore(
-          visitJoints, [&](int entry) { sb.state(entry) = scratch.guardedStates[entry]; },
+      positionGuard.guardPass(
+          sb.dynamicCount(), visitJoints, iteration == 0,
+          [&] { scratch.guardedStates.assign(sb.states(), sb.states() + sb.dynamicCount()); },
+          [&] { overColors<JointAccess::WritePoses>(jointPositions, BundleOp(), pass); },
+          [&](int entry) { sb.state(entry) = scratch.guardedStates[entry]; },
           [&](size_t j) { scaleJointImpulses(solverJoints[j], 0.0); });
       overColors<JointAccess::WritePoses>(nullptr, contactPositions, pass);
     } else {
