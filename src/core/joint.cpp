@@ -1,10 +1,40 @@
-// Joint set-up and the dispatch from the world's solver loop to each joint type.
+// Joint set-up and the dispatch from the world's solver loop to each joint type (kKinds).
 #include "joint.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace impulse2d {
+namespace {
+
+// What each joint type does at each stage of the solvers (joint_<type>.cpp), by JointType.
+struct JointKind {
+  void (*prepare)(Joint&, SolverBody&, SolverBody&, const Feedback&, double dt);
+  void (*warmStart)(Joint&, SolverBody&, SolverBody&);
+  void (*solveVelocity)(Joint&, SolverBody&, SolverBody&, double dt);
+  PositionError (*solvePosition)(Joint&, SolverBody&, SolverBody&);
+  PositionError (*positionError)(const Joint&, const SolverBody&, const SolverBody&);
+};
+
+constexpr JointKind kKinds[] = {
+    {prepareRevolute, warmStartRevolute, solveRevoluteVelocity, solveRevolutePosition,
+     revolutePositionError},
+    {preparePrismatic, warmStartPrismatic, solvePrismaticVelocity, solvePrismaticPosition,
+     prismaticPositionError},
+    {prepareWeld, warmStartWeld, solveWeldVelocity, solveWeldPosition, weldPositionError},
+    {prepareDistance, warmStartDistance, solveDistanceVelocity, solveDistancePosition,
+     distancePositionError},
+};
+static_assert(static_cast<int>(JointType::Revolute) == 0 &&
+                  static_cast<int>(JointType::Prismatic) == 1 &&
+                  static_cast<int>(JointType::Weld) == 2 &&
+                  static_cast<int>(JointType::Distance) == 3 && std::size(kKinds) == 4,
+              "kKinds is in JointType's order");
+
+const JointKind& kindOf(const Joint& joint) { return kKinds[static_cast<int>(joint.params.type)]; }
+
+}  // namespace
 
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB) {
@@ -93,37 +123,11 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
   if (!def.warmStarting) {  // the world resets only the impulses every type shares
     joint.angularImpulse = joint.lengthImpulse = 0.0;
   }
-  switch (joint.params.type) {
-    case JointType::Revolute:
-      prepareRevolute(joint, a, b, fb, dt);
-      break;
-    case JointType::Prismatic:
-      preparePrismatic(joint, a, b, fb, dt);
-      break;
-    case JointType::Weld:
-      prepareWeld(joint, a, b, fb, dt);
-      break;
-    case JointType::Distance:
-      prepareDistance(joint, a, b, fb, dt);
-      break;
-  }
+  kindOf(joint).prepare(joint, a, b, fb, dt);
 }
 
 void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
-  switch (joint.params.type) {
-    case JointType::Revolute:
-      warmStartRevolute(joint, a, b);
-      break;
-    case JointType::Prismatic:
-      warmStartPrismatic(joint, a, b);
-      break;
-    case JointType::Weld:
-      warmStartWeld(joint, a, b);
-      break;
-    case JointType::Distance:
-      warmStartDistance(joint, a, b);
-      break;
-  }
+  kindOf(joint).warmStart(joint, a, b);
 }
 
 void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits) {
@@ -178,48 +182,15 @@ void scaleJointImpulses(Joint& joint, double scale) {
 }
 
 void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
-  switch (joint.params.type) {
-    case JointType::Revolute:
-      solveRevoluteVelocity(joint, a, b, dt);
-      break;
-    case JointType::Prismatic:
-      solvePrismaticVelocity(joint, a, b, dt);
-      break;
-    case JointType::Weld:
-      solveWeldVelocity(joint, a, b, dt);
-      break;
-    case JointType::Distance:
-      solveDistanceVelocity(joint, a, b, dt);
-      break;
-  }
+  kindOf(joint).solveVelocity(joint, a, b, dt);
 }
 
 PositionError solveJointPosition(Joint& joint, SolverBody& a, SolverBody& b) {
-  switch (joint.params.type) {
-    case JointType::Revolute:
-      return solveRevolutePosition(joint, a, b);
-    case JointType::Prismatic:
-      return solvePrismaticPosition(joint, a, b);
-    case JointType::Weld:
-      return solveWeldPosition(joint, a, b);
-    case JointType::Distance:
-      return solveDistancePosition(joint, a, b);
-  }
-  return {};
+  return kindOf(joint).solvePosition(joint, a, b);
 }
 
 PositionError jointPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b) {
-  switch (joint.params.type) {
-    case JointType::Revolute:
-      return revolutePositionError(joint, a, b);
-    case JointType::Prismatic:
-      return prismaticPositionError(joint, a, b);
-    case JointType::Weld:
-      return weldPositionError(joint, a, b);
-    case JointType::Distance:
-      return distancePositionError(joint, a, b);
-  }
-  return {};
+  return kindOf(joint).positionError(joint, a, b);
 }
 
 JointState measureJoint(const Joint& joint, const Body& a, const Body& b) {
