@@ -73,7 +73,7 @@ class PositionGuard {
   /// measures the groups. Without one the guard rests too, so that the sweep is not made every
   /// step. Without `rests` (baumgarte) it sweeps every step: a joint made or a body teleported
   /// during a rest opens a group at once, and baumgarte's bias pumps it until the guard wakes
-  /// (core soak, seeds 1-600: 4 runs gained energy with rests, 1 without).
+  /// (core soak, seeds 1-600: 4 runs gained energy with rests, 1-3 without, run to run).
   template <class Visit>
   void measureStepStart(int entryCount, const Visit& visit, bool rests = true) {
     if (rests) close();

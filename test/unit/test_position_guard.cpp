@@ -100,10 +100,10 @@ TEST(PositionGuard, ArmsOnWideJointsAndRestsAfterStepsWithNothingWorse) {
 // rests the guard sweeps every step, however quiet the last ones were.
 TEST(PositionGuard, JudgesWholeGroupsAtTheStepStartAndSweepsEveryStepWithoutRests) {
   PositionGuard guard;
-  // Group {0, 1, 2}: 2 kFar + 0 over two joints, 1 kFar each, not judged; group {3, 4, 5}:
+  // Group {0, 1, 2}: 1.5 kFar + 0 over two joints, 0.75 kFar each, not judged; group {3, 4, 5}:
   // 4 kFar + 0 + 0.5 kFar over three joints, 1.5 kFar each, judged with all three joints.
   const std::vector<Link> links = {
-      {0, 1, 2 * kFar}, {1, 2, 0.0}, {3, 4, 4 * kFar}, {4, 5, 0.0}, {5, -1, 0.5 * kFar}};
+      {0, 1, 1.5 * kFar}, {1, 2, 0.0}, {3, 4, 4 * kFar}, {4, 5, 0.0}, {5, -1, 0.5 * kFar}};
   const auto judged = [&](bool rests) {
     guard.measureStepStart(6, visitOf(links), rests);
     std::set<int> joints;
