@@ -24,8 +24,7 @@ namespace impulse2d {
 //      ///// still /////
 void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies) {
   const Vec2 none(0.0, 0.0), marked(2.0, 2.0);  // pushes are unit vectors
-  for (const int slot : crushedSlots_) crushed_[static_cast<size_t>(slot)] = 0;  // last step's
-  crushedSlots_.clear();
+  crushed_.clear();                             // last step's
   for (const Contact& contact : contacts) {
     const Manifold& m = contact.manifold;
     bool overlapping = false;
@@ -36,41 +35,26 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
     const int slot = movesA ? contact.bodyA : contact.bodyB;
     const Vec2 push = movesA ? Vec2(-m.normal) : m.normal;  // into the body that moves
     const size_t needed = static_cast<size_t>(slot) + 1;
-    if (pushOfSlot_.size() < needed) {
-      pushOfSlot_.resize(needed, none);
-      crushed_.resize(needed, 0);
-    }
+    if (pushOfSlot_.size() < needed) pushOfSlot_.resize(needed, none);
     Vec2& first = pushOfSlot_[static_cast<size_t>(slot)];
     if (first == none) {
       first = push;
       pushedSlots_.push_back(slot);
     } else if (first != marked && first.dot(push) < -0.5) {
       first = marked;
-      crushed_[static_cast<size_t>(slot)] = 1;
-      crushedSlots_.push_back(slot);
+      crushed_.mark(slot);
     }
   }
   for (const int slot : pushedSlots_) pushOfSlot_[static_cast<size_t>(slot)] = none;
   pushedSlots_.clear();
 }
 
-void ContactSolver::withholdPush(int slot) {
-  const size_t needed = static_cast<size_t>(slot) + 1;
-  if (unpushed_.size() < needed) unpushed_.resize(needed, 0);
-  if (!unpushed_[static_cast<size_t>(slot)]) unpushedSlots_.push_back(slot);
-  unpushed_[static_cast<size_t>(slot)] = 1;
-}
+void ContactSolver::withholdPush(int slot) { unpushed_.mark(slot); }
 
 bool ContactSolver::getsNoPush(const Contact& contact, const SolverBodies& bodies) const {
-  auto crushed = [&](int slot) {
-    return static_cast<size_t>(slot) < crushed_.size() && crushed_[static_cast<size_t>(slot)];
-  };
-  auto unpushed = [&](int slot) {
-    return static_cast<size_t>(slot) < unpushed_.size() && unpushed_[static_cast<size_t>(slot)];
-  };
-  if (unpushed(contact.bodyA) || unpushed(contact.bodyB)) return true;
-  return (crushed(contact.bodyA) && !bodies.isActive(contact.bodyB)) ||
-         (crushed(contact.bodyB) && !bodies.isActive(contact.bodyA));
+  if (unpushed_.has(contact.bodyA) || unpushed_.has(contact.bodyB)) return true;
+  return (crushed_.has(contact.bodyA) && !bodies.isActive(contact.bodyB)) ||
+         (crushed_.has(contact.bodyB) && !bodies.isActive(contact.bodyA));
 }
 
 void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
@@ -155,8 +139,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       }
     }
   }
-  for (const int slot : unpushedSlots_) unpushed_[static_cast<size_t>(slot)] = 0;
-  unpushedSlots_.clear();
+  unpushed_.clear();
 }
 
 void ContactSolver::warmStart() {

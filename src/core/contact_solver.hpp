@@ -91,13 +91,32 @@ class ContactSolver {
   /// body the step does not move, or touches a body whose push is withheld (withholdPush).
   bool getsNoPush(const Contact& contact, const SolverBodies& bodies) const;
 
+  // Marks by slot for one step, with the slots marked listed so that clearing touches only them.
+  struct SlotMarks {
+    void mark(int slot) {
+      const size_t k = static_cast<size_t>(slot);
+      if (bySlot.size() <= k) bySlot.resize(k + 1, 0);
+      if (!bySlot[k]) marked.push_back(slot);
+      bySlot[k] = 1;
+    }
+    bool has(int slot) const {
+      const size_t k = static_cast<size_t>(slot);
+      return k < bySlot.size() && bySlot[k];
+    }
+    void clear() {
+      for (const int slot : marked) bySlot[static_cast<size_t>(slot)] = 0;
+      marked.clear();
+    }
+    std::vector<char> bySlot;
+    std::vector<int> marked;
+  };
+
   std::vector<ContactConstraint> constraints_;
-  std::vector<ContactConstraintExtra> extras_;   // by constraint
-  std::vector<Vec2> pushOfSlot_;                 // findCrushed's scratch: the first push seen
-  std::vector<char> crushed_;                    // by slot, this step (baumgarte)
-  std::vector<int> pushedSlots_, crushedSlots_;  // the slots set in each, to clear only them
-  std::vector<char> unpushed_;                   // by slot, this step (withholdPush)
-  std::vector<int> unpushedSlots_;
+  std::vector<ContactConstraintExtra> extras_;  // by constraint
+  std::vector<Vec2> pushOfSlot_;                // findCrushed's scratch: the first push seen
+  std::vector<int> pushedSlots_;                // the slots set in it, to clear only them
+  SlotMarks crushed_;                           // this step (baumgarte, findCrushed)
+  SlotMarks unpushed_;                          // this step (withholdPush)
 };
 
 }  // namespace impulse2d
