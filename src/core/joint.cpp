@@ -11,8 +11,8 @@ namespace {
 // What each joint type does at each stage of the solvers (joint_<type>.cpp), by JointType.
 struct JointKind {
   void (*prepare)(Joint&, SolverBody&, SolverBody&, const Feedback&, double dt);
-  void (*warmStart)(Joint&, SolverBody&, SolverBody&);
-  void (*solveVelocity)(Joint&, SolverBody&, SolverBody&, double dt);
+  void (*warmStart)(Joint&, BodyVelocity&, BodyVelocity&);
+  void (*solveVelocity)(Joint&, BodyVelocity&, BodyVelocity&, double dt);
   PositionError (*solvePosition)(Joint&, SolverBody&, SolverBody&);
   PositionError (*positionError)(const Joint&, const SolverBody&, const SolverBody&);
 };
@@ -126,11 +126,11 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
   kindOf(joint).prepare(joint, a, b, fb, dt);
 }
 
-void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b) {
+void applyJointWarmStart(Joint& joint, BodyVelocity& a, BodyVelocity& b) {
   kindOf(joint).warmStart(joint, a, b);
 }
 
-void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits) {
+void warmStartJoint(Joint& joint, BodyVelocity& a, BodyVelocity& b, const MotionLimits& limits) {
   const Vec2 va = a.linearVelocity, vb = b.linearVelocity;
   const double wa = a.angularVelocity, wb = b.angularVelocity;
   applyJointWarmStart(joint, a, b);
@@ -139,7 +139,7 @@ void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimi
   struct Change {
     double speedSquared, turnRate;
   };
-  auto changeOf = [](const SolverBody& body, const Vec2& v, double w) {
+  auto changeOf = [](const BodyVelocity& body, const Vec2& v, double w) {
     const double dvx = body.linearVelocity.x() - v.x(), dvy = body.linearVelocity.y() - v.y();
     return Change{dvx * dvx + dvy * dvy, body.angularVelocity - w};
   };
@@ -181,7 +181,7 @@ void scaleJointImpulses(Joint& joint, double scale) {
   joint.lengthImpulse *= scale;
 }
 
-void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
+void solveJointVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt) {
   kindOf(joint).solveVelocity(joint, a, b, dt);
 }
 

@@ -97,13 +97,13 @@ void prepareJoint(Joint& joint, SolverBody& a, SolverBody& b, const WorldDef& de
                   const Feedback& fb, double dt);
 /// Applies the impulses kept from the last step (warm_start_guard.hpp keeps them from growing
 /// without bound). Reads the joint only.
-void applyJointWarmStart(Joint& joint, SolverBody& a, SolverBody& b);
+void applyJointWarmStart(Joint& joint, BodyVelocity& a, BodyVelocity& b);
 /// applyJointWarmStart, scaled down when it would change a body's velocity by more than the
 /// motion limits of this pass allow.
-void warmStartJoint(Joint& joint, SolverBody& a, SolverBody& b, const MotionLimits& limits);
+void warmStartJoint(Joint& joint, BodyVelocity& a, BodyVelocity& b, const MotionLimits& limits);
 /// Scales every accumulated impulse of the joint.
 void scaleJointImpulses(Joint& joint, double scale);
-void solveJointVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+void solveJointVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt);
 /// How far a joint is from holding: its linear error (m) and its angular one (rad), each the
 /// largest of its rows'.
 struct PositionError {
@@ -128,7 +128,7 @@ JointState measureJoint(const Joint& joint, const Body& a, const Body& b);
 struct PointMass {
   double k00, k01, k11;
 };
-inline PointMass pointMass(const SolverBody& a, const SolverBody& b, double rAx, double rAy,
+inline PointMass pointMass(const BodyVelocity& a, const BodyVelocity& b, double rAx, double rAy,
                            double rBx, double rBy) {
   const double mA = a.invMass, mB = b.invMass, iA = a.invInertia, iB = b.invInertia;
   return PointMass{mA + mB + iA * rAy * rAy + iB * rBy * rBy, -iA * rAx * rAy - iB * rBx * rBy,
@@ -171,7 +171,7 @@ inline void invertPointMass(const SolverBody& a, const SolverBody& b, double rAx
 /// Applies the impulse p at the joint, plus the angular impulses; A takes the reaction:
 ///   vA -= mA p, wA -= iA angularA, vB += mB p, wB += iB angularB.
 /// (Inline: the joints' rows call it several times each, in every pass of every sub-step.)
-inline void applyJointImpulse(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
+inline void applyJointImpulse(BodyVelocity& a, BodyVelocity& b, const Vec2& p, double angularA,
                               double angularB) {
   applyImpulse(a, b, p.x(), p.y(), angularA, angularB);  // solver_body.hpp
 }
@@ -251,28 +251,28 @@ Softness softness(double frequency, double dampingRatio, double effectiveMass, d
 
 // --- per type ---
 void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
-void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b);
-void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+void warmStartRevolute(Joint& joint, BodyVelocity& a, BodyVelocity& b);
+void solveRevoluteVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt);
 PositionError solveRevolutePosition(Joint& joint, SolverBody& a, SolverBody& b);
 PositionError revolutePositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
-void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b);
-void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+void warmStartPrismatic(Joint& joint, BodyVelocity& a, BodyVelocity& b);
+void solvePrismaticVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt);
 PositionError solvePrismaticPosition(Joint& joint, SolverBody& a, SolverBody& b);
 PositionError prismaticPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 /// Position and velocity along the rail (the anchors are measureJoint's).
 JointState measurePrismatic(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
-void warmStartWeld(Joint& joint, SolverBody& a, SolverBody& b);
-void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+void warmStartWeld(Joint& joint, BodyVelocity& a, BodyVelocity& b);
+void solveWeldVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt);
 PositionError solveWeldPosition(Joint& joint, SolverBody& a, SolverBody& b);
 PositionError weldPositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 
 void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb, double dt);
-void warmStartDistance(Joint& joint, SolverBody& a, SolverBody& b);
-void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt);
+void warmStartDistance(Joint& joint, BodyVelocity& a, BodyVelocity& b);
+void solveDistanceVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt);
 PositionError solveDistancePosition(Joint& joint, SolverBody& a, SolverBody& b);
 PositionError distancePositionError(const Joint& joint, const SolverBody& a, const SolverBody& b);
 /// Length and its rate (the anchors are measureJoint's).

@@ -47,13 +47,13 @@ double inverseMassOf(const Rod& r, const SolverBody& a, const SolverBody& b) {
   return a.invMass + b.invMass + a.invInertia * r.armA * r.armA + b.invInertia * r.armB * r.armB;
 }
 
-double lengthRate(const Vec2& axis, double armA, double armB, const SolverBody& a,
-                  const SolverBody& b) {
+double lengthRate(const Vec2& axis, double armA, double armB, const BodyVelocity& a,
+                  const BodyVelocity& b) {
   return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
          armA * a.angularVelocity;
 }
 
-void applyAxial(const Joint& j, SolverBody& a, SolverBody& b, double impulse) {
+void applyAxial(const Joint& j, BodyVelocity& a, BodyVelocity& b, double impulse) {
   applyJointImpulse(a, b, impulse * j.axis, j.axisArmA * impulse, j.axisArmB * impulse);
 }
 
@@ -90,11 +90,11 @@ void prepareDistance(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
   }
 }
 
-void warmStartDistance(Joint& joint, SolverBody& a, SolverBody& b) {
+void warmStartDistance(Joint& joint, BodyVelocity& a, BodyVelocity& b) {
   applyAxial(joint, a, b, joint.lengthImpulse + joint.lowerImpulse - joint.upperImpulse);
 }
 
-void solveDistanceVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/) {
+void solveDistanceVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double /*dt*/) {
   auto rate = [&] { return lengthRate(joint.axis, joint.axisArmA, joint.axisArmB, a, b); };
   if (!isSpring(joint)) {
     const Feedback& fb = joint.feedback;

@@ -28,20 +28,20 @@ namespace impulse2d {
 namespace {
 
 // Applies impulses on the perpendicular, angular and axial rows (J^T lambda).
-void applyRows(const Joint& j, SolverBody& a, SolverBody& b, double perpendicular, double angular,
-               double axial) {
+void applyRows(const Joint& j, BodyVelocity& a, BodyVelocity& b, double perpendicular,
+               double angular, double axial) {
   const Vec2 p = perpendicular * j.normal + axial * j.axis;
   applyJointImpulse(a, b, p, j.normalArmA * perpendicular + angular + j.axisArmA * axial,
                     j.normalArmB * perpendicular + angular + j.axisArmB * axial);
 }
 
-double axialRate(const Vec2& axis, double armA, double armB, const SolverBody& a,
-                 const SolverBody& b) {
+double axialRate(const Vec2& axis, double armA, double armB, const BodyVelocity& a,
+                 const BodyVelocity& b) {
   return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
          armA * a.angularVelocity;
 }
 
-double axialRate(const Joint& j, const SolverBody& a, const SolverBody& b) {
+double axialRate(const Joint& j, const BodyVelocity& a, const BodyVelocity& b) {
   return axialRate(j.axis, j.axisArmA, j.axisArmB, a, b);
 }
 
@@ -115,12 +115,12 @@ void preparePrismatic(Joint& joint, SolverBody& a, SolverBody& b, const Feedback
   if (!joint.params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
 }
 
-void warmStartPrismatic(Joint& joint, SolverBody& a, SolverBody& b) {
+void warmStartPrismatic(Joint& joint, BodyVelocity& a, BodyVelocity& b) {
   applyRows(joint, a, b, joint.pairImpulse.x(), joint.pairImpulse.y(),
             joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse);
 }
 
-void solvePrismaticVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
+void solvePrismaticVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt) {
   const JointParams& params = joint.params;
   if (params.enableMotor) {
     const double maxImpulse = params.maxMotorTorque * dt;  // a force (N) for this joint

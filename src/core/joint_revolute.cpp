@@ -9,7 +9,7 @@ namespace impulse2d {
 namespace {
 
 // A pure torque impulse between the two bodies (motor and limit rows).
-void applyAngular(SolverBody& a, SolverBody& b, double impulse) {
+void applyAngular(BodyVelocity& a, BodyVelocity& b, double impulse) {
   applyJointImpulse(a, b, Vec2::Zero(), impulse, impulse);
 }
 
@@ -58,7 +58,7 @@ void prepareRevolute(Joint& joint, SolverBody& a, SolverBody& b, const Feedback&
   if (!joint.params.enableMotor) joint.motorImpulse = 0.0;
 }
 
-void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
+void warmStartRevolute(Joint& joint, BodyVelocity& a, BodyVelocity& b) {
   const double px = joint.pairImpulse.x(), py = joint.pairImpulse.y();
   const double axial = joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
   const Vec2& rA = joint.rA;
@@ -67,7 +67,7 @@ void warmStartRevolute(Joint& joint, SolverBody& a, SolverBody& b) {
                (rB.x() * py - rB.y() * px) + axial);
 }
 
-void solveRevoluteVelocity(Joint& joint, SolverBody& a, SolverBody& b, double dt) {
+void solveRevoluteVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double dt) {
   const JointParams& params = joint.params;
   if (params.enableMotor) {
     const double cdot = b.angularVelocity - a.angularVelocity - params.motorSpeed;

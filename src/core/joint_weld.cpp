@@ -42,12 +42,12 @@ Eigen::Matrix3d safeInverse3(const Eigen::Matrix3d& k) {
   return det != 0.0 ? Eigen::Matrix3d(k.inverse()) : Eigen::Matrix3d::Zero();
 }
 
-void applyPointAndAngle(const Joint& j, SolverBody& a, SolverBody& b, const Vec2& p,
+void applyPointAndAngle(const Joint& j, BodyVelocity& a, BodyVelocity& b, const Vec2& p,
                         double angular) {
   applyJointImpulse(a, b, p, cross(j.rA, p) + angular, cross(j.rB, p) + angular);
 }
 
-Vec2 pointRate(const Joint& j, const SolverBody& a, const SolverBody& b) {
+Vec2 pointRate(const Joint& j, const BodyVelocity& a, const BodyVelocity& b) {
   return b.linearVelocity + cross(b.angularVelocity, j.rB) - a.linearVelocity -
          cross(a.angularVelocity, j.rA);
 }
@@ -77,11 +77,11 @@ void prepareWeld(Joint& joint, SolverBody& a, SolverBody& b, const Feedback& fb,
   }
 }
 
-void warmStartWeld(Joint& joint, SolverBody& a, SolverBody& b) {
+void warmStartWeld(Joint& joint, BodyVelocity& a, BodyVelocity& b) {
   applyPointAndAngle(joint, a, b, joint.pairImpulse, joint.angularImpulse);
 }
 
-void solveWeldVelocity(Joint& joint, SolverBody& a, SolverBody& b, double /*dt*/) {
+void solveWeldVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double /*dt*/) {
   if (isSoft(joint)) {
     // Cdot + biasRate C + gamma L = -dL / m, with L the accumulated spring impulse.
     const double cdot = b.angularVelocity - a.angularVelocity;

@@ -22,11 +22,18 @@
 
 namespace impulse2d {
 
-struct SolverBody {
+/// What a velocity row reads and writes of a body: its velocities and masses. The joints' warm
+/// start and velocity rows take only this, so the sub-stepping passes that read no pose copy no
+/// pose (SubstepBodies::velocityView).
+struct BodyVelocity {
   Vec2 linearVelocity = Vec2::Zero();  // m/s of the centre of mass
   double angularVelocity = 0.0;
   double invMass = 0.0, invInertia = 0.0;  // 0 for the read-only and kinematic entries
-  Vec2 center = Vec2::Zero();              // centre of mass
+};
+
+/// A body as a joint or contact row sees it: velocities, masses and pose.
+struct SolverBody : BodyVelocity {
+  Vec2 center = Vec2::Zero();  // centre of mass
   double angle = 0.0;
   Rot q;  // Rot(angle), to round-off (see turnBy)
   Vec2 localCenter = Vec2::Zero();
@@ -63,7 +70,7 @@ constexpr double kSmallTurn = 0.02;  // rad: below it rotationBy takes the serie
 /// written on its own, for rows computed in scalars (contact_solver.cpp, the joints): their
 /// Vec2(px, py) was built on the stack from two stores and read back as one vector, which stalls
 /// store forwarding; a velocity written so is read back as scalars.
-inline void applyImpulse(SolverBody& a, SolverBody& b, double px, double py, double angularA,
+inline void applyImpulse(BodyVelocity& a, BodyVelocity& b, double px, double py, double angularA,
                          double angularB) {
   a.linearVelocity.x() -= a.invMass * px;
   a.linearVelocity.y() -= a.invMass * py;

@@ -112,9 +112,11 @@ class SubstepBodies {
   /// A joint's scalar view of a body: its pose now, velocities and masses. Bodies that do not
   /// move this step read as static (no velocity, infinite mass).
   SolverBody view(int slot) const;
-  /// The same with only the velocities and masses, for the passes that read no pose: the pose
-  /// fields stay at their defaults (v3_joint_grid spent a fifth of its joint passes on poses).
-  SolverBody velocityView(int slot) const;
+  /// Only the velocities and masses, for the passes that read no pose (v3_joint_grid spent a
+  /// fifth of its joint passes on poses, and a tenth more on copying views with unread poses).
+  BodyVelocity velocityView(int slot) const;
+  /// Writes back what a joint's velocity rows changed, to a dynamic entry.
+  void store(int slot, const BodyVelocity& view);
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
   /// `pose` (position passes).
   void store(int slot, const SolverBody& view, bool pose);
@@ -167,7 +169,8 @@ inline SolverBody SubstepBodies::view(int slot) const {
   const BodyState& s = states_[entry];
   const BodySim& sim = sims_[entry];
   const BodyStart& start = starts_[entry];
-  SolverBody e = velocityView(slot);
+  SolverBody e;
+  static_cast<BodyVelocity&>(e) = velocityView(slot);
   e.center = sim.center0 + Eigen::Map<const Vec2>(&s.dx);
   e.angle = start.angle0 + s.turned;
   e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
@@ -180,8 +183,8 @@ inline SolverBody SubstepBodies::view(int slot) const {
   return e;
 }
 
-inline SolverBody SubstepBodies::velocityView(int slot) const {
-  SolverBody e;  // a body that does not move this step: no velocity, infinite mass
+inline BodyVelocity SubstepBodies::velocityView(int slot) const {
+  BodyVelocity e;  // a body that does not move this step: no velocity, infinite mass
   const int entry = entryOfSlot_[slot];
   if (entry < 0) return e;
   const BodyState& s = states_[entry];
@@ -193,14 +196,20 @@ inline SolverBody SubstepBodies::velocityView(int slot) const {
   return e;
 }
 
-inline void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
+inline void SubstepBodies::store(int slot, const BodyVelocity& view) {
   const int entry = entryOfSlot_[slot];
   if (entry < 0 || entry >= dynamicCount_) return;
   BodyState& s = states_[entry];
   s.vx = view.linearVelocity.x();
   s.vy = view.linearVelocity.y();
   s.w = view.angularVelocity;
-  if (!pose) return;
+}
+
+inline void SubstepBodies::store(int slot, const SolverBody& view, bool pose) {
+  store(slot, static_cast<const BodyVelocity&>(view));
+  const int entry = entryOfSlot_[slot];
+  if (!pose || entry < 0 || entry >= dynamicCount_) return;
+  BodyState& s = states_[entry];
   const BodySim& sim = sims_[entry];
   double angle0 = starts_[entry].angle0;
   Rot q0 = starts_[entry].q0;

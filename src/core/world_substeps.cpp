@@ -83,14 +83,19 @@ void WorldImpl::prefetchJointAhead(int k, int end, bool geometry) const {
 template <WorldImpl::JointAccess access, class JointOp>
 void WorldImpl::onJoint(int index, int worker, const JointOp& op) {
   Joint& joint = solverJoints[index];
-  const SubstepBodies& sb = substepBodies;
-  constexpr bool velocities = access == JointAccess::Velocities;
-  SolverBody a = velocities ? sb.velocityView(joint.bodyA) : sb.view(joint.bodyA);
-  SolverBody b = velocities ? sb.velocityView(joint.bodyB) : sb.view(joint.bodyB);
-  op(joint, a, b, worker);
-  constexpr bool pose = access == JointAccess::WritePoses;
-  substepBodies.store(joint.bodyA, a, pose);
-  substepBodies.store(joint.bodyB, b, pose);
+  SubstepBodies& sb = substepBodies;
+  if constexpr (access == JointAccess::Velocities) {
+    BodyVelocity a = sb.velocityView(joint.bodyA), b = sb.velocityView(joint.bodyB);
+    op(joint, a, b, worker);
+    sb.store(joint.bodyA, a);
+    sb.store(joint.bodyB, b);
+  } else {
+    SolverBody a = sb.view(joint.bodyA), b = sb.view(joint.bodyB);
+    op(joint, a, b, worker);
+    constexpr bool pose = access == JointAccess::WritePoses;
+    sb.store(joint.bodyA, a, pose);
+    sb.store(joint.bodyB, b, pose);
+  }
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
@@ -169,12 +174,14 @@ void WorldImpl::solveSubsteps(double dt) {
   const Feedback firstFeedback = soft ? jointSpring : rigid;
   int substep = 0;
   const bool preparedByRelax = !soft && def.warmStarting;
-  bool prepares = true;  // this sub-step's warm start prepares the joints' rows (reads poses)
   const auto prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
-    if (prepares) prepareJoint(j, a, b, def, j.feedbackWithheld ? rigid : firstFeedback, h);
+    prepareJoint(j, a, b, def, j.feedbackWithheld ? rigid : firstFeedback, h);
     warmStartJoint(j, a, b, motionLimits);
   };
-  const auto solveJoints = [h](Joint& j, SolverBody& a, SolverBody& b, int) {
+  const auto warmStart = [&](Joint& j, BodyVelocity& a, BodyVelocity& b, int) {
+    warmStartJoint(j, a, b, motionLimits);
+  };
+  const auto solveJoints = [h](Joint& j, BodyVelocity& a, BodyVelocity& b, int) {
     solveJointVelocity(j, a, b, h);
   };
   const auto prepareAndRelax = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
@@ -191,11 +198,10 @@ void WorldImpl::solveSubsteps(double dt) {
       sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
     });
     laps.lap(&StepProfile::integrate);
-    prepares = substep == 0 || !preparedByRelax;
-    if (prepares) {
+    if (substep == 0 || !preparedByRelax) {  // else the rows are the last relax pass's
       overColors<JointAccess::ReadPoses>(prepareAndWarmStart, kernel(warmStartBundles), pass);
     } else {
-      overColors<JointAccess::Velocities>(prepareAndWarmStart, kernel(warmStartBundles), pass);
+      overColors<JointAccess::Velocities>(warmStart, kernel(warmStartBundles), pass);
     }
     laps.lap(&StepProfile::warmStart);
     pass.useBias = soft;
