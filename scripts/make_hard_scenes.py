@@ -164,6 +164,42 @@ def main():
              "shapes: [{type: box, size: [0.5, 0.5]}]}\n")
     write("fast_box.yaml", "Hard case: a 0.5 m box at 100 m/s onto ground 5 cm thick.", text)
 
+    # v3's joint grid, small, with what a joint lane meets (joint_lanes.hpp): colours of many
+    # plain revolute joints, static and kinematic bodies, motors, limits and welds among them,
+    # and loose boxes landing on it.
+    n = 12
+    text = world() + "bodies:\n" + ground(width=40.0, top=-n - 2.0)
+    joints = []
+    for k in range(n):
+        for i in range(n):
+            kind = "dynamic"
+            extra = ""
+            if i == 0 and k in (3, 8):
+                kind = "static"
+            elif i == 0 and k == 5:
+                kind, extra = "kinematic", ", angular_velocity: 0.5"
+            text += (f"  - {{name: g{k}_{i}, type: {kind}, position: [{k}.0, {-i}.0]{extra}, "
+                     "shapes: [{type: circle, radius: 0.4, filter: {category: 2, mask: 0xFFFD}}]}\n")
+            for pair in ((i > 0, f"g{k}_{i - 1}", f"[{k}.0, {-i + 0.5}]"),
+                         (k > 0, f"g{k - 1}_{i}", f"[{k - 0.5}, {-i}.0]")):
+                if not pair[0]:
+                    continue
+                count = len(joints)
+                kind = "weld" if count % 29 == 28 else "revolute"
+                more = ""
+                if kind == "revolute" and count % 7 == 6:
+                    more = ", motor_speed: 1.0, max_motor_torque: 5.0"
+                elif kind == "revolute" and count % 11 == 10:
+                    more = ", lower: -0.3, upper: 0.4"
+                joints.append(f"  - {{name: j{count}, type: {kind}, body_a: {pair[1]}, "
+                              f"body_b: g{k}_{i}, anchor: {pair[2]}{more}}}\n")
+    for m in range(20):
+        text += (f"  - {{name: box{m}, position: [{(m * 5) % n + 0.3}, {3.0 + m % 4}], "
+                 "shapes: [{type: box, size: [0.5, 0.5]}]}\n")
+    text += "joints:\n" + "".join(joints)
+    write("joint_grid.yaml", "Hard case: a 12 x 12 grid of circles pinned to their neighbours, "
+          "boxes dropped on it.", text)
+
 
 if __name__ == "__main__":
     main()

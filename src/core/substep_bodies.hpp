@@ -115,6 +115,10 @@ class SubstepBodies {
   /// Only the velocities and masses, for the passes that read no pose (v3_joint_grid spent a
   /// fifth of its joint passes on poses, and a tenth more on copying views with unread poses).
   BodyVelocity velocityView(int slot) const;
+  /// What view(slot) turns a joint's anchors with and measures them from: the rotation as the
+  /// step began (view().q is it times the turn since, unless the body does not move) and the
+  /// local centre of mass.
+  std::pair<Rot, Vec2> viewFrame(int slot) const;
   /// Writes back what a joint's velocity rows changed, to a dynamic entry.
   void store(int slot, const BodyVelocity& view);
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
@@ -181,6 +185,13 @@ inline SolverBody SubstepBodies::view(int slot) const {
     e.localCenter = m->viewLocalCenter;
   }
   return e;
+}
+
+inline std::pair<Rot, Vec2> SubstepBodies::viewFrame(int slot) const {
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0) return {(*bodies_)[slot].xf.q, (*bodies_)[slot].localCenter};
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) return {m->q0, m->viewLocalCenter};
+  return {starts_[entry].q0, starts_[entry].localCenter};
 }
 
 inline BodyVelocity SubstepBodies::velocityView(int slot) const {

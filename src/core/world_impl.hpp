@@ -9,6 +9,7 @@
 #include "distance.hpp"
 #include "dynamic_tree.hpp"
 #include "joint.hpp"
+#include "joint_lanes.hpp"
 #include "position_guard.hpp"
 #include "solver_body.hpp"
 #include "stage_clock.hpp"
@@ -236,8 +237,13 @@ struct WorldImpl {
   // anchors, reference angle) is always current; syncJoints() writes the rest back before
   // anything edits a joint or colours them in another order.
   std::vector<Joint> solverJoints;
-  std::vector<int> heldJointOrder;    // solverJoints' slots while they hold the joints; else empty
-  std::vector<int> jointStart;        // colour c's in solverJoints: [jointStart[c], [c + 1])
+  std::vector<int> heldJointOrder;  // solverJoints' slots while they hold the joints; else empty
+  std::vector<int> jointStart;      // colour c's in solverJoints: [jointStart[c], [c + 1])
+  // The plain revolute joints of the colours in SIMD lanes, under `substep` (joint_lanes.hpp):
+  // filled as the sub-steps begin, written back into solverJoints after them.
+  JointLanes jointLanes;
+  bool jointLanesFilled = false;
+  JointLaneArgs jointLaneArgs;
   std::vector<uint8_t> contactFates;  // the narrow phase's verdict, by contact
   // Continuous collision's bodies and clusters of this step (continuous.cpp).
   struct FastBody {  // moved farther than the speculative margin this step
@@ -324,9 +330,17 @@ struct WorldImpl {
   template <JointAccess access, class JointOp>
   void onJoint(int index, int worker, const JointOp& op);
   /// One pass over every colour's joints (none for a null op) and bundles, then the overflow's;
-  /// bundleOp may be empty.
+  /// bundleOp may be empty. While the joint lanes are filled (jointLanesFilled), a colour's
+  /// joints in lanes run `lanePass` instead of jointOp.
   template <JointAccess access, class JointOp>
-  void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass);
+  void overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
+                  JointLanePass lanePass = JointLanePass::Solve);
+  /// One colour's joints in a pass while the lanes are filled: its bundles run `lanePass`, its
+  /// other joints jointOp.
+  template <JointAccess access, class JointOp>
+  void overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass, double h);
+  /// The lanes of bundles [begin, end) whose warm start the kernels left to the scalar path.
+  void warmStartScalarLanes(int begin, int end, const MotionLimits& limits);
   // solveSubsteps' stages, in order.
   /// The active joints and the contacts coloured together, the joints copied colour by colour.
   void colorConstraints();

@@ -39,6 +39,7 @@ constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 // claiming a block costs little, small enough that the threads finish a colour together.
 constexpr int kBundlesPerBlock = 4;
 constexpr int kJointsPerBlock = 32;
+constexpr int kJointBundlesPerBlock = 4;
 // Joints copied to and from their colours' order per block.
 constexpr int kJointsPerCopyBlock = 256;
 
@@ -98,9 +99,53 @@ void WorldImpl::onJoint(int index, int worker, const JointOp& op) {
   }
 }
 
+void WorldImpl::warmStartScalarLanes(int begin, int end, const MotionLimits& limits) {
+  for (int k = begin; k < end; ++k) {
+    JointBundle& bundle = jointLanes.bundle(k);
+    for (int lane = 0; bundle.scalarLanes != 0 && lane < kJointLanes; ++lane) {
+      if (!(bundle.scalarLanes & (1u << lane))) continue;
+      Joint& joint = solverJoints[static_cast<size_t>(bundle.joint[lane])];
+      JointLanes::toJoint(bundle, lane, joint);
+      onJoint<JointAccess::Velocities>(bundle.joint[lane], 0,
+                                       [&](Joint& j, BodyVelocity& a, BodyVelocity& b, int) {
+                                         warmStartJoint(j, a, b, limits);
+                                       });
+      JointLanes::fromJoint(joint, bundle, lane);
+    }
+    bundle.scalarLanes = 0;
+  }
+}
+
 template <WorldImpl::JointAccess access, class JointOp>
-void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
-                           const BundlePass& pass) {
+void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass, double h) {
+  // The colour's bundles, then its joints that take no lane: all independent of each other.
+  const bool warmStarts =
+      lanePass == JointLanePass::WarmStart || lanePass == JointLanePass::PrepareAndWarmStart;
+  const MotionLimits limits = MotionLimits::of(def, h);
+  const int firstBundle = jointLanes.bundleStart(color);
+  const int bundles = jointLanes.bundleStart(color + 1) - firstBundle;
+  const std::vector<int>& scalar = jointLanes.scalarJoints(color);
+  const int count = static_cast<int>(scalar.size());
+  const int bundleBlocks = blocksOf(bundles, kJointBundlesPerBlock);
+  stepWorkers.stage(bundleBlocks + blocksOf(count, kJointsPerBlock), [&](int block, int worker) {
+    if (block < bundleBlocks) {
+      JointLaneArgs args = jointLaneArgs;
+      args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(worker) * kStateDoubles);
+      const int from = firstBundle + block * kJointBundlesPerBlock;
+      const int to = std::min(firstBundle + bundles, from + kJointBundlesPerBlock);
+      runJointLanes(args, lanePass, from, to);
+      if (warmStarts) warmStartScalarLanes(from, to, limits);
+      return;
+    }
+    const int from = (block - bundleBlocks) * kJointsPerBlock;
+    const int to = std::min(count, from + kJointsPerBlock);
+    for (int i = from; i < to; ++i) onJoint<access>(scalar[i], worker, jointOp);
+  });
+}
+
+template <WorldImpl::JointAccess access, class JointOp>
+void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, const BundlePass& pass,
+                           JointLanePass lanePass) {
   SubstepBodies& sb = substepBodies;
   const int colors = contactBundles.colorCount();
   // The joints first, colour after colour and then their overflow, and the contacts after them:
@@ -110,6 +155,10 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp,
   if constexpr (!std::is_same_v<JointOp, std::nullptr_t>) {
     if (!solverJoints.empty()) {  // no stage per colour for a world without joints
       for (int color = 0; color < colors; ++color) {
+        if (jointLanesFilled) {
+          overLaneColor<access>(color, jointOp, lanePass, pass.h);
+          continue;
+        }
         const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
         stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock),
                           [&](int block, int worker) {
@@ -158,6 +207,16 @@ void WorldImpl::solveSubsteps(double dt) {
   if (soft) measureSoftStepStart();
   BundlePass pass = bundlePass(h);
   fillBundles(dt, substeps, soft);
+  const bool preparedByRelax = !soft && def.warmStarting;
+  jointLanesFilled = preparedByRelax;  // the lanes' rows are rigid and warm started
+  if (jointLanesFilled) {
+    jointLanes.fill(solverJoints, jointStart, stepColors.colorCount(), sb);
+    const MotionLimits limits = MotionLimits::of(def, h);
+    jointLaneArgs.bundles = jointLanes.bundles();
+    jointLaneArgs.states = reinterpret_cast<double*>(sb.states());
+    jointLaneArgs.maxSpeedSquared = limits.maxSpeedSquared;
+    jointLaneArgs.halfMaxTurnRate = 0.5 * limits.maxTurnRate;
+  }
   laps.lap(&StepProfile::prepare);
 
   const Feedback rigid;  // no bias
@@ -173,7 +232,6 @@ void WorldImpl::solveSubsteps(double dt) {
   // preparing revolute joints twice a sub-step).
   const Feedback firstFeedback = soft ? jointSpring : rigid;
   int substep = 0;
-  const bool preparedByRelax = !soft && def.warmStarting;
   const auto prepareAndWarmStart = [&](Joint& j, SolverBody& a, SolverBody& b, int) {
     prepareJoint(j, a, b, def, j.feedbackWithheld ? rigid : firstFeedback, h);
     warmStartJoint(j, a, b, motionLimits);
@@ -199,14 +257,17 @@ void WorldImpl::solveSubsteps(double dt) {
     });
     laps.lap(&StepProfile::integrate);
     if (substep == 0 || !preparedByRelax) {  // else the rows are the last relax pass's
-      overColors<JointAccess::ReadPoses>(prepareAndWarmStart, kernel(warmStartBundles), pass);
+      overColors<JointAccess::ReadPoses>(prepareAndWarmStart, kernel(warmStartBundles), pass,
+                                         JointLanePass::PrepareAndWarmStart);
     } else {
-      overColors<JointAccess::Velocities>(warmStart, kernel(warmStartBundles), pass);
+      overColors<JointAccess::Velocities>(warmStart, kernel(warmStartBundles), pass,
+                                          JointLanePass::WarmStart);
     }
     laps.lap(&StepProfile::warmStart);
     pass.useBias = soft;
     pass.relax = false;
-    overColors<JointAccess::Velocities>(solveJoints, kernel(solveBundles), pass);
+    overColors<JointAccess::Velocities>(solveJoints, kernel(solveBundles), pass,
+                                        JointLanePass::Solve);
     laps.lap(&StepProfile::solve);
 
     stepWorkers.stage(bodyBlocks, [&](int block, int) {
@@ -220,8 +281,13 @@ void WorldImpl::solveSubsteps(double dt) {
     // the 5050-box pyramid holds at 8 sub-steps but shakes apart at 12).
     pass.useBias = false;
     pass.relax = true;
-    overColors<JointAccess::ReadPoses>(prepareAndRelax, kernel(solveBundles), pass);
+    overColors<JointAccess::ReadPoses>(prepareAndRelax, kernel(solveBundles), pass,
+                                       JointLanePass::PrepareAndSolve);
     laps.lap(&StepProfile::relax);
+  }
+  if (jointLanesFilled) {
+    jointLanes.writeBack(solverJoints, sb, def, h);
+    jointLanesFilled = false;
   }
   pass.relax = false;
   overColors<JointAccess::Velocities>(nullptr, kernel(restituteBundles), pass);

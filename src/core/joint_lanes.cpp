@@ -1,0 +1,120 @@
+// Laying the sub-stepping solver's plain revolute joints into SIMD lanes (joint_lanes.hpp).
+#include "joint_lanes.hpp"
+
+
+namespace impulse2d {
+namespace {
+
+void setBody(const SubstepBodies& bodies, int slot, const Vec2& localAnchor, int32_t& offset,
+             double& invMass, double& invInertia, double& q0c, double& q0s, double& turns,
+             double& anchorX, double& anchorY) {
+  const int64_t read = bodies.readRow(slot) * kStateDoubles;
+  offset = bodies.writeRow(slot) >= 0 ? static_cast<int32_t>(read) : ~static_cast<int32_t>(read);
+  const BodyVelocity v = bodies.velocityView(slot);
+  invMass = v.invMass;
+  invInertia = v.invInertia;
+  const auto [q0, localCenter] = bodies.viewFrame(slot);
+  q0c = q0.c;
+  q0s = q0.s;
+  turns = bodies.entryOf(slot) >= 0 ? 1.0 : 0.0;
+  const Vec2 anchor = localAnchor - localCenter;  // as anchorGap (joint_revolute.cpp)
+  anchorX = anchor.x();
+  anchorY = anchor.y();
+}
+
+void setEmptyLane(JointBundle& j, int lane, int32_t identityOffset) {
+  j.offsetA[lane] = j.offsetB[lane] = ~identityOffset;
+  j.joint[lane] = -1;
+  j.invMassA[lane] = j.invInertiaA[lane] = j.invMassB[lane] = j.invInertiaB[lane] = 0.0;
+  j.q0cA[lane] = j.q0cB[lane] = 1.0;
+  j.q0sA[lane] = j.q0sB[lane] = j.turnsA[lane] = j.turnsB[lane] = 0.0;
+  j.anchorAx[lane] = j.anchorAy[lane] = j.anchorBx[lane] = j.anchorBy[lane] = 0.0;
+  j.rAx[lane] = j.rAy[lane] = j.rBx[lane] = j.rBy[lane] = 0.0;
+  j.mass00[lane] = j.mass01[lane] = j.mass11[lane] = 0.0;
+  j.impulseX[lane] = j.impulseY[lane] = 0.0;
+}
+
+}  // namespace
+
+bool JointLanes::fits(const Joint& joint) {
+  return joint.params.type == JointType::Revolute && !joint.params.enableMotor &&
+         !joint.params.enableLimit;
+}
+
+void JointLanes::fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
+                      const SubstepBodies& bodies) {
+  const int32_t identityOffset = static_cast<int32_t>(bodies.identityRow() * kStateDoubles);
+  bundles_.clear();
+  bundleStart_.assign(1, 0);
+  scalarJoints_.resize(static_cast<size_t>(colors));
+  for (int color = 0; color < colors; ++color) {
+    std::vector<int>& scalar = scalarJoints_[static_cast<size_t>(color)];
+    scalar.clear();
+    int lane = kJointLanes;  // the last bundle is full: the next lane opens one
+    for (int k = colorStart[color]; k < colorStart[color + 1]; ++k) {
+      Joint& joint = joints[static_cast<size_t>(k)];
+      if (!fits(joint)) {
+        scalar.push_back(k);
+        continue;
+      }
+      if (lane == kJointLanes) {
+        bundles_.emplace_back();
+        bundles_.back().laneCount = 0;
+        bundles_.back().scalarLanes = 0;
+        lane = 0;
+      }
+      JointBundle& j = bundles_.back();
+      // What the scalar prepare sets for a joint without motor and limits, every pass.
+      joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
+      j.joint[lane] = k;
+      setBody(bodies, joint.bodyA, joint.localAnchorA, j.offsetA[lane], j.invMassA[lane],
+              j.invInertiaA[lane], j.q0cA[lane], j.q0sA[lane], j.turnsA[lane], j.anchorAx[lane],
+              j.anchorAy[lane]);
+      setBody(bodies, joint.bodyB, joint.localAnchorB, j.offsetB[lane], j.invMassB[lane],
+              j.invInertiaB[lane], j.q0cB[lane], j.q0sB[lane], j.turnsB[lane], j.anchorBx[lane],
+              j.anchorBy[lane]);
+      fromJoint(joint, j, lane);
+      j.laneCount = ++lane;
+    }
+    for (; lane < kJointLanes; ++lane) setEmptyLane(bundles_.back(), lane, identityOffset);
+    bundleStart_.push_back(static_cast<int>(bundles_.size()));
+  }
+}
+
+void JointLanes::toJoint(const JointBundle& j, int lane, Joint& joint) {
+  joint.rA.x() = j.rAx[lane];
+  joint.rA.y() = j.rAy[lane];
+  joint.rB.x() = j.rBx[lane];
+  joint.rB.y() = j.rBy[lane];
+  joint.pairMass << j.mass00[lane], j.mass01[lane], j.mass01[lane], j.mass11[lane];
+  joint.pairImpulse.x() = j.impulseX[lane];
+  joint.pairImpulse.y() = j.impulseY[lane];
+}
+
+void JointLanes::fromJoint(const Joint& joint, JointBundle& j, int lane) {
+  j.rAx[lane] = joint.rA.x();
+  j.rAy[lane] = joint.rA.y();
+  j.rBx[lane] = joint.rB.x();
+  j.rBy[lane] = joint.rB.y();
+  j.mass00[lane] = joint.pairMass(0, 0);
+  j.mass01[lane] = joint.pairMass(0, 1);
+  j.mass11[lane] = joint.pairMass(1, 1);
+  j.impulseX[lane] = joint.pairImpulse.x();
+  j.impulseY[lane] = joint.pairImpulse.y();
+}
+
+void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies,
+                           const WorldDef& def, double h) {
+  const Feedback rigid;
+  for (const JointBundle& j : bundles_) {
+    for (int lane = 0; lane < j.laneCount; ++lane) {
+      Joint& joint = joints[static_cast<size_t>(j.joint[lane])];
+      joint.pairImpulse.x() = j.impulseX[lane];
+      joint.pairImpulse.y() = j.impulseY[lane];
+      SolverBody a = bodies.view(joint.bodyA), b = bodies.view(joint.bodyB);
+      prepareJoint(joint, a, b, def, rigid, h);
+    }
+  }
+}
+
+}  // namespace impulse2d

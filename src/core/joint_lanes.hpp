@@ -1,0 +1,97 @@
+// The sub-stepping solver's revolute joints in SIMD lanes, as contact_bundles.hpp lays out the
+// contacts: a colour's joints share no moving body, so eight of them can be solved at once. Only
+// what most joints are takes a lane: a revolute joint without motor or limits under `substep`
+// (rigid rows: no bias, no spring; warm started). Every other joint stays on the scalar path
+// (joint_revolute.cpp and the others), one after the other.
+//
+// Each lane repeats the scalar rows' IEEE operations in their order (prepareRevolute,
+// warmStartJoint, solveRevoluteVelocity), so a joint gives the same bits in a lane as on the
+// scalar path, on every instruction set. A lane whose warm start would break the motion limits
+// (warmStartJoint's rescaling, rare) is left untouched and handed back to the scalar path.
+//
+//   per step:       fill (the bodies' rows, start rotations, anchors, kept impulse)
+//   per sub-step:   [prepare +] warm start, solve, prepare + relax (solve at the new poses)
+//   after them:     writeBack (the impulse, and the rows as the last relax prepared them)
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "joint.hpp"
+#include "motion_limits.hpp"
+#include "substep_bodies.hpp"
+
+namespace impulse2d {
+
+constexpr int kJointLanes = 8;
+
+// Each array of doubles fills a whole line (the kernels' aligned loads).
+struct alignas(64) JointBundle {
+  JointBundle() {}  // fill() writes every field of every lane: no zeroing
+  double invMassA[kJointLanes], invInertiaA[kJointLanes];
+  double invMassB[kJointLanes], invInertiaB[kJointLanes];
+  // Each view's rotation as the step began (SubstepBodies::viewFrame) and whether the body turns
+  // this step (1) or is read as it stands (0: q is q0 itself, not q0 times the identity).
+  double q0cA[kJointLanes], q0sA[kJointLanes], q0cB[kJointLanes], q0sB[kJointLanes];
+  double turnsA[kJointLanes], turnsB[kJointLanes];
+  // m, the anchor from each body's centre of mass in the body's frame (localAnchor - localCenter).
+  double anchorAx[kJointLanes], anchorAy[kJointLanes];
+  double anchorBx[kJointLanes], anchorBy[kJointLanes];
+  // The rows as the last prepare left them: the arms at the poses then and K^-1 (symmetric).
+  double rAx[kJointLanes], rAy[kJointLanes], rBx[kJointLanes], rBy[kJointLanes];
+  double mass00[kJointLanes], mass01[kJointLanes], mass11[kJointLanes];
+  double impulseX[kJointLanes], impulseY[kJointLanes];  // N s, accumulated (Joint::pairImpulse)
+  // BodyState offsets (row * kStateDoubles); ~offset for a body the lane must not write (static,
+  // kinematic, an empty lane), as ContactBundle.
+  int32_t offsetA[kJointLanes];
+  int32_t offsetB[kJointLanes];
+  int32_t joint[kJointLanes];  // index in the solver's joints
+  int laneCount;
+  uint8_t scalarLanes;  // bit i: lane i's warm start was left to the scalar path (above)
+};
+static_assert(offsetof(JointBundle, impulseY) % 64 == 0, "the doubles in whole lines");
+
+/// What the joint kernels do in one pass over some bundles.
+enum class JointLanePass { PrepareAndWarmStart, WarmStart, Solve, PrepareAndSolve };
+
+struct JointLaneArgs {
+  JointBundle* bundles = nullptr;
+  double* states = nullptr;                             // SubstepBodies::states(), as doubles
+  int32_t sinkOffset = 0;                               // this worker's sink row * kStateDoubles
+  double maxSpeedSquared = 0.0, halfMaxTurnRate = 0.0;  // MotionLimits, for the warm start
+};
+
+/// The kernels (joint_kernels.cpp) over the bundles [begin, end), whose lanes share no body.
+void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end);
+
+class JointLanes {
+ public:
+  /// Whether a joint takes a lane: revolute, no motor, no limits.
+  static bool fits(const Joint& joint);
+  /// Lays the fitting joints of each colour ([colorStart[c], colorStart[c + 1]) of `joints`,
+  /// the overflow excluded) into bundles and fills them; the others of each colour are listed in
+  /// scalarJoints. On one thread.
+  void fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
+            const SubstepBodies& bodies);
+  /// Colour c's bundles are [bundleStart(c), bundleStart(c + 1)).
+  int bundleStart(int color) const { return bundleStart_[color]; }
+  /// Colour c's joints that take no lane (indices in the solver's joints).
+  const std::vector<int>& scalarJoints(int color) const { return scalarJoints_[color]; }
+  JointBundle* bundles() { return bundles_.data(); }
+  JointBundle& bundle(int k) { return bundles_[k]; }
+  /// Copies a lane's rows and impulse into its joint (for the scalar path), and back.
+  static void toJoint(const JointBundle& bundle, int lane, Joint& joint);
+  static void fromJoint(const Joint& joint, JointBundle& bundle, int lane);
+  /// After the sub-steps: each lane's impulse into its joint, and the joint's rows prepared at
+  /// the poses now, as the scalar path's last relax pass left them.
+  void writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies, const WorldDef& def,
+                 double h);
+
+ private:
+  std::vector<JointBundle> bundles_;
+  std::vector<int> bundleStart_;                // by colour, one past the last
+  std::vector<std::vector<int>> scalarJoints_;  // by colour
+};
+
+}  // namespace impulse2d
