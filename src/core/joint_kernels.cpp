@@ -42,10 +42,41 @@ HWY_INLINE void arm(D d, const double* q0c, const double* q0s, const double* tur
   *ry = hn::Add(hn::Mul(s, ax), hn::Mul(c, ay));
 }
 
+// std::max(a, b) and std::clamp(v, lo, hi), NaN and all.
+template <class D>
+HWY_INLINE V<D> maxOf(const V<D>& a, const V<D>& b) {
+  return hn::IfThenElse(hn::Lt(a, b), b, a);
+}
+template <class D>
+HWY_INLINE V<D> clampOf(const V<D>& v, const V<D>& lo, const V<D>& hi) {
+  return hn::IfThenElse(hn::Lt(v, lo), lo, hn::IfThenElse(hn::Lt(hi, v), hi, v));
+}
+
+// The limit rows' targets (prepareRevolute's limitBias with rigid feedback, whose largest turn
+// rate is pi): an angle c within a limit may close at c / h; one past it gets max(0 c, -pi).
+template <class D>
+HWY_INLINE void limitBiases(D d, JointBundle& j, size_t lane, double step, const Bodies<D>& a,
+                            const Bodies<D>& b) {
+  auto angleOf = [&](const double* angle0, const double* turns, const Bodies<D>& body) {
+    const V<D> start = hn::Load(d, angle0 + lane);
+    const auto moves = hn::Gt(hn::Load(d, turns + lane), hn::Zero(d));
+    return hn::IfThenElse(moves, hn::Add(start, body.turned), start);
+  };
+  const V<D> angle =
+      hn::Sub(hn::Sub(angleOf(j.angle0B, j.turnsB, b), angleOf(j.angle0A, j.turnsA, a)),
+              hn::Load(d, j.referenceAngle + lane));
+  const V<D> h = hn::Set(d, step), zero = hn::Zero(d), fastestBack = hn::Set(d, -kPi);
+  auto bias = [&](const V<D>& c) {
+    return hn::IfThenElse(hn::Gt(c, zero), hn::Div(c, h), maxOf<D>(hn::Mul(zero, c), fastestBack));
+  };
+  hn::Store(bias(hn::Sub(angle, hn::Load(d, j.lower + lane))), d, j.lowerBias + lane);
+  hn::Store(bias(hn::Sub(hn::Load(d, j.upper + lane), angle)), d, j.upperBias + lane);
+}
+
 // prepareRevolute with rigid feedback: the arms, and K^-1 (pointMass, then safeInverse: zero
 // where K is singular).
 template <class D>
-HWY_INLINE Rows<D> prepare(D d, JointBundle& j, size_t lane, const Bodies<D>& a,
+HWY_INLINE Rows<D> prepare(D d, JointBundle& j, size_t lane, double h, const Bodies<D>& a,
                            const Bodies<D>& b) {
   Rows<D> r;
   arm(d, j.q0cA, j.q0sA, j.turnsA, j.anchorAx, j.anchorAy, lane, a.qc, a.qs, &r.rAx, &r.rAy);
@@ -72,6 +103,7 @@ HWY_INLINE Rows<D> prepare(D d, JointBundle& j, size_t lane, const Bodies<D>& a,
   hn::Store(r.mass00, d, j.mass00 + lane);
   hn::Store(r.mass01, d, j.mass01 + lane);
   hn::Store(r.mass11, d, j.mass11 + lane);
+  if (j.anyLimit) limitBiases(d, j, lane, h, a, b);
   return r;
 }
 
@@ -88,14 +120,27 @@ HWY_INLINE void apply(const JointBundle& j, size_t lane, D d, const V<D>& px, co
   b->w = hn::Add(b->w, hn::Mul(hn::Load(d, j.invInertiaB + lane), angularB));
 }
 
-// warmStartJoint over warmStartRevolute (no motor, no limits: the axial impulse is +0). Lanes
-// whose change would break the motion limits keep their bodies' velocities and are marked for
-// the scalar path, which rescales the impulse as warmStartJoint does.
+// The velocities of `changed` in the lanes of `mask`, `body`'s own elsewhere.
+template <class D, class M>
+HWY_INLINE void takeWhere(const M& mask, const Bodies<D>& changed, Bodies<D>* body) {
+  body->vx = hn::IfThenElse(mask, changed.vx, body->vx);
+  body->vy = hn::IfThenElse(mask, changed.vy, body->vy);
+  body->w = hn::IfThenElse(mask, changed.w, body->w);
+}
+
+// warmStartJoint over warmStartRevolute (a bundle without motors and limits has an axial impulse
+// of +0, as (0 + 0) - 0). Lanes whose change would break the motion limits keep their bodies'
+// velocities and are marked for the scalar path, which rescales the impulses as warmStartJoint
+// does.
 template <class D>
 HWY_INLINE void warmStart(D d, const JointLaneArgs& args, JointBundle& j, size_t lane,
                           const Rows<D>& r, Bodies<D>* a, Bodies<D>* b) {
   const V<D> px = hn::Load(d, j.impulseX + lane), py = hn::Load(d, j.impulseY + lane);
-  const V<D> axial = hn::Zero(d);
+  const V<D> axial =
+      j.anyMotor || j.anyLimit
+          ? hn::Sub(hn::Add(hn::Load(d, j.motorImpulse + lane), hn::Load(d, j.lowerImpulse + lane)),
+                    hn::Load(d, j.upperImpulse + lane))
+          : hn::Zero(d);
   Bodies<D> a1 = *a, b1 = *b;
   apply(j, lane, d, px, py, hn::Add(hn::Sub(hn::Mul(r.rAx, py), hn::Mul(r.rAy, px)), axial),
         hn::Add(hn::Sub(hn::Mul(r.rBx, py), hn::Mul(r.rBy, px)), axial), &a1, &b1);
@@ -116,19 +161,63 @@ HWY_INLINE void warmStart(D d, const JointLaneArgs& args, JointBundle& j, size_t
       j.scalarLanes = static_cast<uint8_t>(j.scalarLanes | (1u << (lane + i)));
   }
   const auto keep = limited ? ok : hn::FirstN(d, 0);
-  a->vx = hn::IfThenElse(keep, a1.vx, a->vx);
-  a->vy = hn::IfThenElse(keep, a1.vy, a->vy);
-  a->w = hn::IfThenElse(keep, a1.w, a->w);
-  b->vx = hn::IfThenElse(keep, b1.vx, b->vx);
-  b->vy = hn::IfThenElse(keep, b1.vy, b->vy);
-  b->w = hn::IfThenElse(keep, b1.w, b->w);
+  takeWhere(keep, a1, a);
+  takeWhere(keep, b1, b);
 }
 
-// solveRevoluteVelocity without motor and limits, with rigid feedback (bias 0, massScale 1,
-// impulseScale 0).
+// applyAngular (joint_revolute.cpp): a pure torque impulse, through applyImpulse with p = 0, in
+// the lanes of `mask` only.
+template <class D, class M>
+HWY_INLINE void applyAngular(D d, const JointBundle& j, size_t lane, const M& mask,
+                             const V<D>& impulse, Bodies<D>* a, Bodies<D>* b) {
+  const V<D> zero = hn::Zero(d);
+  Bodies<D> a1 = *a, b1 = *b;
+  apply(j, lane, d, zero, zero, impulse, impulse, &a1, &b1);
+  takeWhere(mask, a1, a);
+  takeWhere(mask, b1, b);
+}
+
+// solveRevoluteVelocity's motor and limit rows, in the lanes that have them.
+template <class D>
+HWY_INLINE void solveAngular(D d, JointBundle& j, size_t lane, Bodies<D>* a, Bodies<D>* b) {
+  const V<D> zero = hn::Zero(d), mass = hn::Load(d, j.axialMass + lane);
+  if (j.anyMotor) {
+    const auto motor = hn::Gt(hn::Load(d, j.hasMotor + lane), zero);
+    const V<D> cdot = hn::Sub(hn::Sub(b->w, a->w), hn::Load(d, j.motorSpeed + lane));
+    const V<D> maxImpulse = hn::Load(d, j.maxMotorImpulse + lane);
+    const V<D> old = hn::Load(d, j.motorImpulse + lane);
+    const V<D> total =
+        clampOf<D>(hn::Sub(old, hn::Mul(mass, cdot)), hn::Neg(maxImpulse), maxImpulse);
+    applyAngular(d, j, lane, motor, hn::Sub(total, old), a, b);
+    hn::Store(hn::IfThenElse(motor, total, old), d, j.motorImpulse + lane);
+  }
+  if (j.anyLimit) {
+    // solveOneSided with rigid feedback: max(x - 1 m rate - 0 x, 0).
+    const auto limit = hn::Gt(hn::Load(d, j.hasLimit + lane), zero);
+    const V<D> one = hn::Set(d, 1.0);
+    auto oneSided = [&](const V<D>& old, const V<D>& rate) {
+      return maxOf<D>(hn::Sub(hn::Sub(old, hn::Mul(hn::Mul(one, mass), rate)), hn::Mul(zero, old)),
+                      zero);
+    };
+    const V<D> oldLower = hn::Load(d, j.lowerImpulse + lane);
+    const V<D> lower =
+        oneSided(oldLower, hn::Add(hn::Sub(b->w, a->w), hn::Load(d, j.lowerBias + lane)));
+    applyAngular(d, j, lane, limit, hn::Sub(lower, oldLower), a, b);
+    hn::Store(hn::IfThenElse(limit, lower, oldLower), d, j.lowerImpulse + lane);
+    const V<D> oldUpper = hn::Load(d, j.upperImpulse + lane);
+    const V<D> upper =
+        oneSided(oldUpper, hn::Add(hn::Sub(a->w, b->w), hn::Load(d, j.upperBias + lane)));
+    applyAngular(d, j, lane, limit, hn::Neg(hn::Sub(upper, oldUpper)), a, b);
+    hn::Store(hn::IfThenElse(limit, upper, oldUpper), d, j.upperImpulse + lane);
+  }
+}
+
+// solveRevoluteVelocity with rigid feedback (bias 0, massScale 1, impulseScale 0): the motor and
+// limits, then the pair.
 template <class D>
 HWY_INLINE void solve(D d, JointBundle& j, size_t lane, const Rows<D>& r, Bodies<D>* a,
                       Bodies<D>* b) {
+  if (j.anyMotor || j.anyLimit) solveAngular(d, j, lane, a, b);
   const V<D> zero = hn::Zero(d), massScale = hn::Set(d, 1.0), impulseScale = zero;
   const V<D> cdotX = hn::Sub(hn::Sub(hn::Add(b->vx, hn::Mul(hn::Neg(b->w), r.rBy)), a->vx),
                              hn::Mul(hn::Neg(a->w), r.rAy));
@@ -155,7 +244,7 @@ HWY_INLINE void group(D d, const JointLaneArgs& args, JointLanePass pass, JointB
   Bodies<D> b = loadBodies(d, args.states, j.offsetB + lane);
   const bool prepares =
       pass == JointLanePass::PrepareAndWarmStart || pass == JointLanePass::PrepareAndSolve;
-  const Rows<D> r = prepares ? prepare(d, j, lane, a, b) : loadRows(d, j, lane);
+  const Rows<D> r = prepares ? prepare(d, j, lane, args.h, a, b) : loadRows(d, j, lane);
   if (pass == JointLanePass::PrepareAndWarmStart || pass == JointLanePass::WarmStart) {
     warmStart(d, args, j, lane, r, &a, &b);
   } else {

@@ -1,13 +1,12 @@
-// Laying the sub-stepping solver's plain revolute joints into SIMD lanes (joint_lanes.hpp).
+// Laying the sub-stepping solver's revolute joints into SIMD lanes (joint_lanes.hpp).
 #include "joint_lanes.hpp"
-
 
 namespace impulse2d {
 namespace {
 
 void setBody(const SubstepBodies& bodies, int slot, const Vec2& localAnchor, int32_t& offset,
              double& invMass, double& invInertia, double& q0c, double& q0s, double& turns,
-             double& anchorX, double& anchorY) {
+             double& angle0, double& anchorX, double& anchorY) {
   const int64_t read = bodies.readRow(slot) * kStateDoubles;
   offset = bodies.writeRow(slot) >= 0 ? static_cast<int32_t>(read) : ~static_cast<int32_t>(read);
   const BodyVelocity v = bodies.velocityView(slot);
@@ -17,6 +16,7 @@ void setBody(const SubstepBodies& bodies, int slot, const Vec2& localAnchor, int
   q0c = q0.c;
   q0s = q0.s;
   turns = bodies.entryOf(slot) >= 0 ? 1.0 : 0.0;
+  angle0 = bodies.viewAngle0(slot);
   const Vec2 anchor = localAnchor - localCenter;  // as anchorGap (joint_revolute.cpp)
   anchorX = anchor.x();
   anchorY = anchor.y();
@@ -32,17 +32,18 @@ void setEmptyLane(JointBundle& j, int lane, int32_t identityOffset) {
   j.rAx[lane] = j.rAy[lane] = j.rBx[lane] = j.rBy[lane] = 0.0;
   j.mass00[lane] = j.mass01[lane] = j.mass11[lane] = 0.0;
   j.impulseX[lane] = j.impulseY[lane] = 0.0;
+  j.hasMotor[lane] = j.hasLimit[lane] = j.motorSpeed[lane] = j.maxMotorImpulse[lane] = 0.0;
+  j.lower[lane] = j.upper[lane] = j.referenceAngle[lane] = j.angle0A[lane] = j.angle0B[lane] = 0.0;
+  j.axialMass[lane] = j.lowerBias[lane] = j.upperBias[lane] = 0.0;
+  j.motorImpulse[lane] = j.lowerImpulse[lane] = j.upperImpulse[lane] = 0.0;
 }
 
 }  // namespace
 
-bool JointLanes::fits(const Joint& joint) {
-  return joint.params.type == JointType::Revolute && !joint.params.enableMotor &&
-         !joint.params.enableLimit;
-}
+bool JointLanes::fits(const Joint& joint) { return joint.params.type == JointType::Revolute; }
 
 void JointLanes::fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
-                      const SubstepBodies& bodies) {
+                      const SubstepBodies& bodies, double h) {
   const int32_t identityOffset = static_cast<int32_t>(bodies.identityRow() * kStateDoubles);
   bundles_.clear();
   bundleStart_.assign(1, 0);
@@ -60,19 +61,34 @@ void JointLanes::fill(std::vector<Joint>& joints, const std::vector<int>& colorS
       if (lane == kJointLanes) {
         bundles_.emplace_back();
         bundles_.back().laneCount = 0;
+        bundles_.back().anyMotor = bundles_.back().anyLimit = false;
         bundles_.back().scalarLanes = 0;
         lane = 0;
       }
       JointBundle& j = bundles_.back();
-      // What the scalar prepare sets for a joint without motor and limits, every pass.
-      joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
+      const JointParams& params = joint.params;
+      // What the scalar prepare sets, every pass, for a joint without a motor or limits.
+      if (!params.enableMotor) joint.motorImpulse = 0.0;
+      if (!params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
       j.joint[lane] = k;
       setBody(bodies, joint.bodyA, joint.localAnchorA, j.offsetA[lane], j.invMassA[lane],
-              j.invInertiaA[lane], j.q0cA[lane], j.q0sA[lane], j.turnsA[lane], j.anchorAx[lane],
-              j.anchorAy[lane]);
+              j.invInertiaA[lane], j.q0cA[lane], j.q0sA[lane], j.turnsA[lane], j.angle0A[lane],
+              j.anchorAx[lane], j.anchorAy[lane]);
       setBody(bodies, joint.bodyB, joint.localAnchorB, j.offsetB[lane], j.invMassB[lane],
-              j.invInertiaB[lane], j.q0cB[lane], j.q0sB[lane], j.turnsB[lane], j.anchorBx[lane],
-              j.anchorBy[lane]);
+              j.invInertiaB[lane], j.q0cB[lane], j.q0sB[lane], j.turnsB[lane], j.angle0B[lane],
+              j.anchorBx[lane], j.anchorBy[lane]);
+      j.hasMotor[lane] = params.enableMotor ? 1.0 : 0.0;
+      j.hasLimit[lane] = params.enableLimit ? 1.0 : 0.0;
+      j.anyMotor = j.anyMotor || params.enableMotor;
+      j.anyLimit = j.anyLimit || params.enableLimit;
+      j.motorSpeed[lane] = params.motorSpeed;
+      j.maxMotorImpulse[lane] = params.maxMotorTorque * h;  // as solveRevoluteVelocity
+      j.lower[lane] = params.lower;
+      j.upper[lane] = params.upper;
+      j.referenceAngle[lane] = joint.referenceAngle;
+      const double inertiaSum = j.invInertiaA[lane] + j.invInertiaB[lane];  // as prepareRevolute
+      j.axialMass[lane] = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
+      j.lowerBias[lane] = j.upperBias[lane] = 0.0;
       fromJoint(joint, j, lane);
       j.laneCount = ++lane;
     }
@@ -89,6 +105,9 @@ void JointLanes::toJoint(const JointBundle& j, int lane, Joint& joint) {
   joint.pairMass << j.mass00[lane], j.mass01[lane], j.mass01[lane], j.mass11[lane];
   joint.pairImpulse.x() = j.impulseX[lane];
   joint.pairImpulse.y() = j.impulseY[lane];
+  joint.motorImpulse = j.motorImpulse[lane];
+  joint.lowerImpulse = j.lowerImpulse[lane];
+  joint.upperImpulse = j.upperImpulse[lane];
 }
 
 void JointLanes::fromJoint(const Joint& joint, JointBundle& j, int lane) {
@@ -101,6 +120,9 @@ void JointLanes::fromJoint(const Joint& joint, JointBundle& j, int lane) {
   j.mass11[lane] = joint.pairMass(1, 1);
   j.impulseX[lane] = joint.pairImpulse.x();
   j.impulseY[lane] = joint.pairImpulse.y();
+  j.motorImpulse[lane] = joint.motorImpulse;
+  j.lowerImpulse[lane] = joint.lowerImpulse;
+  j.upperImpulse[lane] = joint.upperImpulse;
 }
 
 void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies,
@@ -109,8 +131,7 @@ void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodi
   for (const JointBundle& j : bundles_) {
     for (int lane = 0; lane < j.laneCount; ++lane) {
       Joint& joint = joints[static_cast<size_t>(j.joint[lane])];
-      joint.pairImpulse.x() = j.impulseX[lane];
-      joint.pairImpulse.y() = j.impulseY[lane];
+      toJoint(j, lane, joint);
       SolverBody a = bodies.view(joint.bodyA), b = bodies.view(joint.bodyB);
       prepareJoint(joint, a, b, def, rigid, h);
     }

@@ -1,8 +1,8 @@
 // The sub-stepping solver's revolute joints in SIMD lanes, as contact_bundles.hpp lays out the
-// contacts: a colour's joints share no moving body, so eight of them can be solved at once. Only
-// what most joints are takes a lane: a revolute joint without motor or limits under `substep`
-// (rigid rows: no bias, no spring; warm started). Every other joint stays on the scalar path
-// (joint_revolute.cpp and the others), one after the other.
+// contacts: a colour's joints share no moving body, so eight of them can be solved at once. The
+// revolute joints of `substep` take lanes (rigid rows: no bias, no spring; warm started), with
+// their motors and limits; every other joint stays on the scalar path (joint_*.cpp), one after
+// the other.
 //
 // Each lane repeats the scalar rows' IEEE operations in their order (prepareRevolute,
 // warmStartJoint, solveRevoluteVelocity), so a joint gives the same bits in a lane as on the
@@ -42,15 +42,25 @@ struct alignas(64) JointBundle {
   double rAx[kJointLanes], rAy[kJointLanes], rBx[kJointLanes], rBy[kJointLanes];
   double mass00[kJointLanes], mass01[kJointLanes], mass11[kJointLanes];
   double impulseX[kJointLanes], impulseY[kJointLanes];  // N s, accumulated (Joint::pairImpulse)
+  // The motor and the limits, in bundles that have any (anyMotor, anyLimit): 1 where the lane's
+  // joint has one, its parameters, the relative angle's parts, and the rows' state.
+  double hasMotor[kJointLanes], hasLimit[kJointLanes];
+  double motorSpeed[kJointLanes], maxMotorImpulse[kJointLanes];  // rad/s; N m s a sub-step
+  double lower[kJointLanes], upper[kJointLanes], referenceAngle[kJointLanes];  // rad
+  double angle0A[kJointLanes], angle0B[kJointLanes];      // each view's angle as the step began
+  double axialMass[kJointLanes];                          // kg m^2
+  double lowerBias[kJointLanes], upperBias[kJointLanes];  // rad/s, as the last prepare left them
+  double motorImpulse[kJointLanes], lowerImpulse[kJointLanes], upperImpulse[kJointLanes];
   // BodyState offsets (row * kStateDoubles); ~offset for a body the lane must not write (static,
   // kinematic, an empty lane), as ContactBundle.
   int32_t offsetA[kJointLanes];
   int32_t offsetB[kJointLanes];
   int32_t joint[kJointLanes];  // index in the solver's joints
   int laneCount;
+  bool anyMotor, anyLimit;
   uint8_t scalarLanes;  // bit i: lane i's warm start was left to the scalar path (above)
 };
-static_assert(offsetof(JointBundle, impulseY) % 64 == 0, "the doubles in whole lines");
+static_assert(offsetof(JointBundle, upperImpulse) % 64 == 0, "the doubles in whole lines");
 
 /// What the joint kernels do in one pass over some bundles.
 enum class JointLanePass { PrepareAndWarmStart, WarmStart, Solve, PrepareAndSolve };
@@ -59,6 +69,7 @@ struct JointLaneArgs {
   JointBundle* bundles = nullptr;
   double* states = nullptr;                             // SubstepBodies::states(), as doubles
   int32_t sinkOffset = 0;                               // this worker's sink row * kStateDoubles
+  double h = 0.0;                                       // s, the sub-step
   double maxSpeedSquared = 0.0, halfMaxTurnRate = 0.0;  // MotionLimits, for the warm start
 };
 
@@ -67,13 +78,13 @@ void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int
 
 class JointLanes {
  public:
-  /// Whether a joint takes a lane: revolute, no motor, no limits.
+  /// Whether a joint takes a lane: revolute.
   static bool fits(const Joint& joint);
-  /// Lays the fitting joints of each colour ([colorStart[c], colorStart[c + 1]) of `joints`,
-  /// the overflow excluded) into bundles and fills them; the others of each colour are listed in
-  /// scalarJoints. On one thread.
+  /// Lays the fitting joints of each colour ([colorStart[c], colorStart[c + 1]) of `joints`, the
+  /// overflow excluded) into bundles and fills them for sub-steps of h; the others of each colour
+  /// are listed in scalarJoints. On one thread.
   void fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
-            const SubstepBodies& bodies);
+            const SubstepBodies& bodies, double h);
   /// Colour c's bundles are [bundleStart(c), bundleStart(c + 1)).
   int bundleStart(int color) const { return bundleStart_[color]; }
   /// Colour c's joints that take no lane (indices in the solver's joints).

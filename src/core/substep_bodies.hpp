@@ -119,6 +119,8 @@ class SubstepBodies {
   /// step began (view().q is it times the turn since, unless the body does not move) and the
   /// local centre of mass.
   std::pair<Rot, Vec2> viewFrame(int slot) const;
+  /// view(slot).angle less the turn since the step began (all of it when the body does not move).
+  double viewAngle0(int slot) const;
   /// Writes back what a joint's velocity rows changed, to a dynamic entry.
   void store(int slot, const BodyVelocity& view);
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
@@ -192,6 +194,13 @@ inline std::pair<Rot, Vec2> SubstepBodies::viewFrame(int slot) const {
   if (entry < 0) return {(*bodies_)[slot].xf.q, (*bodies_)[slot].localCenter};
   if (const MemberStart* m = clusterRows_.ofSlot(slot)) return {m->q0, m->viewLocalCenter};
   return {starts_[entry].q0, starts_[entry].localCenter};
+}
+
+inline double SubstepBodies::viewAngle0(int slot) const {
+  const int entry = entryOfSlot_[slot];
+  if (entry < 0) return (*bodies_)[slot].angle;
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) return m->angle0;
+  return starts_[entry].angle0;
 }
 
 inline BodyVelocity SubstepBodies::velocityView(int slot) const {

@@ -239,7 +239,7 @@ struct WorldImpl {
   std::vector<Joint> solverJoints;
   std::vector<int> heldJointOrder;  // solverJoints' slots while they hold the joints; else empty
   std::vector<int> jointStart;      // colour c's in solverJoints: [jointStart[c], [c + 1])
-  // The plain revolute joints of the colours in SIMD lanes, under `substep` (joint_lanes.hpp):
+  // The revolute joints of the colours in SIMD lanes, under `substep` (joint_lanes.hpp):
   // filled as the sub-steps begin, written back into solverJoints after them.
   JointLanes jointLanes;
   bool jointLanesFilled = false;

@@ -210,9 +210,10 @@ void WorldImpl::solveSubsteps(double dt) {
   const bool preparedByRelax = !soft && def.warmStarting;
   jointLanesFilled = preparedByRelax;  // the lanes' rows are rigid and warm started
   if (jointLanesFilled) {
-    jointLanes.fill(solverJoints, jointStart, stepColors.colorCount(), sb);
+    jointLanes.fill(solverJoints, jointStart, stepColors.colorCount(), sb, h);
     const MotionLimits limits = MotionLimits::of(def, h);
     jointLaneArgs.bundles = jointLanes.bundles();
+    jointLaneArgs.h = h;
     jointLaneArgs.states = reinterpret_cast<double*>(sb.states());
     jointLaneArgs.maxSpeedSquared = limits.maxSpeedSquared;
     jointLaneArgs.halfMaxTurnRate = 0.5 * limits.maxTurnRate;
