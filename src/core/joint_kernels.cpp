@@ -264,6 +264,11 @@ void RunJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int
   }
 }
 
+void RunJointLane(const JointLaneArgs& args, JointLanePass pass, int lane) {
+  const hn::CappedTag<double, 1> d1;
+  group(d1, args, pass, args.bundles[lane / kJointLanes], static_cast<size_t>(lane % kJointLanes));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace impulse2d
 HWY_AFTER_NAMESPACE();
@@ -272,9 +277,13 @@ HWY_AFTER_NAMESPACE();
 namespace impulse2d {
 
 HWY_EXPORT(RunJointLanes);
+HWY_EXPORT(RunJointLane);
 
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
   HWY_DYNAMIC_DISPATCH(RunJointLanes)(args, pass, begin, end);
+}
+void runJointLane(const JointLaneArgs& args, JointLanePass pass, int lane) {
+  HWY_DYNAMIC_DISPATCH(RunJointLane)(args, pass, lane);
 }
 
 }  // namespace impulse2d

@@ -42,55 +42,64 @@ void setEmptyLane(JointBundle& j, int lane, int32_t identityOffset) {
 
 bool JointLanes::fits(const Joint& joint) { return joint.params.type == JointType::Revolute; }
 
+int JointLanes::addLane(Joint& joint, int k, const SubstepBodies& bodies, double h, int& lane) {
+  if (lane == kJointLanes) {
+    bundles_.emplace_back();
+    bundles_.back().laneCount = 0;
+    bundles_.back().anyMotor = bundles_.back().anyLimit = false;
+    bundles_.back().scalarLanes = 0;
+    lane = 0;
+  }
+  JointBundle& j = bundles_.back();
+  const JointParams& params = joint.params;
+  // What the scalar prepare sets, every pass, for a joint without a motor or limits.
+  if (!params.enableMotor) joint.motorImpulse = 0.0;
+  if (!params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
+  j.joint[lane] = k;
+  setBody(bodies, joint.bodyA, joint.localAnchorA, j.offsetA[lane], j.invMassA[lane],
+          j.invInertiaA[lane], j.q0cA[lane], j.q0sA[lane], j.turnsA[lane], j.angle0A[lane],
+          j.anchorAx[lane], j.anchorAy[lane]);
+  setBody(bodies, joint.bodyB, joint.localAnchorB, j.offsetB[lane], j.invMassB[lane],
+          j.invInertiaB[lane], j.q0cB[lane], j.q0sB[lane], j.turnsB[lane], j.angle0B[lane],
+          j.anchorBx[lane], j.anchorBy[lane]);
+  j.hasMotor[lane] = params.enableMotor ? 1.0 : 0.0;
+  j.hasLimit[lane] = params.enableLimit ? 1.0 : 0.0;
+  j.anyMotor = j.anyMotor || params.enableMotor;
+  j.anyLimit = j.anyLimit || params.enableLimit;
+  j.motorSpeed[lane] = params.motorSpeed;
+  j.maxMotorImpulse[lane] = params.maxMotorTorque * h;  // as solveRevoluteVelocity
+  j.lower[lane] = params.lower;
+  j.upper[lane] = params.upper;
+  j.referenceAngle[lane] = joint.referenceAngle;
+  const double inertiaSum = j.invInertiaA[lane] + j.invInertiaB[lane];  // as prepareRevolute
+  j.axialMass[lane] = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
+  j.lowerBias[lane] = j.upperBias[lane] = 0.0;
+  fromJoint(joint, j, lane);
+  j.laneCount = lane + 1;
+  return static_cast<int>(bundles_.size() - 1) * kJointLanes + lane++;
+}
+
 void JointLanes::fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
                       const SubstepBodies& bodies, double h) {
   const int32_t identityOffset = static_cast<int32_t>(bodies.identityRow() * kStateDoubles);
   bundles_.clear();
   bundleStart_.assign(1, 0);
   scalarJoints_.resize(static_cast<size_t>(colors));
-  for (int color = 0; color < colors; ++color) {
-    std::vector<int>& scalar = scalarJoints_[static_cast<size_t>(color)];
-    scalar.clear();
+  overflowLanes_.clear();
+  for (int color = 0; color <= colors; ++color) {  // the overflow last
+    const bool overflow = color == colors;
     int lane = kJointLanes;  // the last bundle is full: the next lane opens one
+    if (!overflow) scalarJoints_[static_cast<size_t>(color)].clear();
     for (int k = colorStart[color]; k < colorStart[color + 1]; ++k) {
       Joint& joint = joints[static_cast<size_t>(k)];
-      if (!fits(joint)) {
-        scalar.push_back(k);
-        continue;
+      const bool lanes = fits(joint);
+      if (overflow) {
+        overflowLanes_.push_back(lanes ? addLane(joint, k, bodies, h, lane) : -1);
+      } else if (lanes) {
+        addLane(joint, k, bodies, h, lane);
+      } else {
+        scalarJoints_[static_cast<size_t>(color)].push_back(k);
       }
-      if (lane == kJointLanes) {
-        bundles_.emplace_back();
-        bundles_.back().laneCount = 0;
-        bundles_.back().anyMotor = bundles_.back().anyLimit = false;
-        bundles_.back().scalarLanes = 0;
-        lane = 0;
-      }
-      JointBundle& j = bundles_.back();
-      const JointParams& params = joint.params;
-      // What the scalar prepare sets, every pass, for a joint without a motor or limits.
-      if (!params.enableMotor) joint.motorImpulse = 0.0;
-      if (!params.enableLimit) joint.lowerImpulse = joint.upperImpulse = 0.0;
-      j.joint[lane] = k;
-      setBody(bodies, joint.bodyA, joint.localAnchorA, j.offsetA[lane], j.invMassA[lane],
-              j.invInertiaA[lane], j.q0cA[lane], j.q0sA[lane], j.turnsA[lane], j.angle0A[lane],
-              j.anchorAx[lane], j.anchorAy[lane]);
-      setBody(bodies, joint.bodyB, joint.localAnchorB, j.offsetB[lane], j.invMassB[lane],
-              j.invInertiaB[lane], j.q0cB[lane], j.q0sB[lane], j.turnsB[lane], j.angle0B[lane],
-              j.anchorBx[lane], j.anchorBy[lane]);
-      j.hasMotor[lane] = params.enableMotor ? 1.0 : 0.0;
-      j.hasLimit[lane] = params.enableLimit ? 1.0 : 0.0;
-      j.anyMotor = j.anyMotor || params.enableMotor;
-      j.anyLimit = j.anyLimit || params.enableLimit;
-      j.motorSpeed[lane] = params.motorSpeed;
-      j.maxMotorImpulse[lane] = params.maxMotorTorque * h;  // as solveRevoluteVelocity
-      j.lower[lane] = params.lower;
-      j.upper[lane] = params.upper;
-      j.referenceAngle[lane] = joint.referenceAngle;
-      const double inertiaSum = j.invInertiaA[lane] + j.invInertiaB[lane];  // as prepareRevolute
-      j.axialMass[lane] = inertiaSum > 0.0 ? 1.0 / inertiaSum : 0.0;
-      j.lowerBias[lane] = j.upperBias[lane] = 0.0;
-      fromJoint(joint, j, lane);
-      j.laneCount = ++lane;
     }
     for (; lane < kJointLanes; ++lane) setEmptyLane(bundles_.back(), lane, identityOffset);
     bundleStart_.push_back(static_cast<int>(bundles_.size()));

@@ -1,8 +1,8 @@
 // The sub-stepping solver's revolute joints in SIMD lanes, as contact_bundles.hpp lays out the
 // contacts: a colour's joints share no moving body, so eight of them can be solved at once. The
 // revolute joints of `substep` take lanes (rigid rows: no bias, no spring; warm started), with
-// their motors and limits; every other joint stays on the scalar path (joint_*.cpp), one after
-// the other.
+// their motors and limits; the overflow's too, each solved on its own in the overflow's order.
+// Every other joint stays on the scalar path (joint_*.cpp).
 //
 // Each lane repeats the scalar rows' IEEE operations in their order (prepareRevolute,
 // warmStartJoint, solveRevoluteVelocity), so a joint gives the same bits in a lane as on the
@@ -75,20 +75,25 @@ struct JointLaneArgs {
 
 /// The kernels (joint_kernels.cpp) over the bundles [begin, end), whose lanes share no body.
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end);
+/// The same for one lane (bundle * kJointLanes + lane) on its own.
+void runJointLane(const JointLaneArgs& args, JointLanePass pass, int lane);
 
 class JointLanes {
  public:
   /// Whether a joint takes a lane: revolute.
   static bool fits(const Joint& joint);
   /// Lays the fitting joints of each colour ([colorStart[c], colorStart[c + 1]) of `joints`, the
-  /// overflow excluded) into bundles and fills them for sub-steps of h; the others of each colour
-  /// are listed in scalarJoints. On one thread.
+  /// overflow (colour `colors`) last) into bundles and fills them for sub-steps of h; the others
+  /// of each colour are listed in scalarJoints. On one thread.
   void fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
             const SubstepBodies& bodies, double h);
   /// Colour c's bundles are [bundleStart(c), bundleStart(c + 1)).
   int bundleStart(int color) const { return bundleStart_[color]; }
   /// Colour c's joints that take no lane (indices in the solver's joints).
   const std::vector<int>& scalarJoints(int color) const { return scalarJoints_[color]; }
+  /// The i-th overflow joint's lane (bundle * kJointLanes + lane), or -1: it takes none. The
+  /// overflow's lanes are solved one at a time, in the overflow's order.
+  int overflowLane(int i) const { return overflowLanes_[static_cast<size_t>(i)]; }
   JointBundle* bundles() { return bundles_.data(); }
   JointBundle& bundle(int k) { return bundles_[k]; }
   /// Copies a lane's rows and impulse into its joint (for the scalar path), and back.
@@ -100,9 +105,14 @@ class JointLanes {
                  double h);
 
  private:
+  /// Fills the next lane (opening a bundle when the last is full) with solver joint k; returns
+  /// its place (bundle * kJointLanes + lane).
+  int addLane(Joint& joint, int k, const SubstepBodies& bodies, double h, int& lane);
+
   std::vector<JointBundle> bundles_;
   std::vector<int> bundleStart_;                // by colour, one past the last
   std::vector<std::vector<int>> scalarJoints_;  // by colour
+  std::vector<int> overflowLanes_;              // by overflow joint
 };
 
 }  // namespace impulse2d

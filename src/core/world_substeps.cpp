@@ -170,8 +170,22 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
                             }
                           });
       }
-      for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k)
-        onJoint<access>(k, 0, jointOp);
+      // The overflow, one joint after the other: in a lane of its own where it has one.
+      JointLaneArgs args = jointLaneArgs;
+      args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(0) * kStateDoubles);
+      const bool warmStarts =
+          lanePass == JointLanePass::WarmStart || lanePass == JointLanePass::PrepareAndWarmStart;
+      for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) {
+        const int lane = jointLanesFilled ? jointLanes.overflowLane(k - jointStart[colors]) : -1;
+        if (lane < 0) {
+          onJoint<access>(k, 0, jointOp);
+          continue;
+        }
+        runJointLane(args, lanePass, lane);
+        const int bundle = lane / kJointLanes;
+        if (warmStarts && jointLanes.bundle(bundle).scalarLanes != 0)
+          warmStartScalarLanes(bundle, bundle + 1, MotionLimits::of(def, pass.h));
+      }
     }
   }
   if (!bundleOp) return;
