@@ -91,11 +91,12 @@ HWY_INLINE Rows<D> prepare(D d, JointBundle& j, size_t lane, double h, const Bod
   const V<D> k11 =
       hn::Add(hn::Add(m, hn::Mul(hn::Mul(iA, r.rAx), r.rAx)), hn::Mul(hn::Mul(iB, r.rBx), r.rBx));
   const V<D> det = hn::Sub(hn::Mul(k00, k11), hn::Mul(k01, k01));
-  const auto invertible = hn::Ne(det, hn::Zero(d));
+  // det == 0 as safeInverse asks it: false for a NaN on every instruction set (Ne is not).
+  const auto singular = hn::Eq(det, hn::Zero(d));
   const V<D> invDet = hn::Div(hn::Set(d, 1.0), det);
-  r.mass00 = hn::IfThenElseZero(invertible, hn::Mul(k11, invDet));
-  r.mass01 = hn::IfThenElseZero(invertible, hn::Mul(hn::Neg(k01), invDet));
-  r.mass11 = hn::IfThenElseZero(invertible, hn::Mul(k00, invDet));
+  r.mass00 = hn::IfThenZeroElse(singular, hn::Mul(k11, invDet));
+  r.mass01 = hn::IfThenZeroElse(singular, hn::Mul(hn::Neg(k01), invDet));
+  r.mass11 = hn::IfThenZeroElse(singular, hn::Mul(k00, invDet));
   hn::Store(r.rAx, d, j.rAx + lane);
   hn::Store(r.rAy, d, j.rAy + lane);
   hn::Store(r.rBx, d, j.rBx + lane);
