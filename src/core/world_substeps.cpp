@@ -300,9 +300,10 @@ void WorldImpl::solveSubsteps(double dt) {
                                        JointLanePass::PrepareAndSolve);
     laps.lap(&StepProfile::relax);
   }
-  if (jointLanesFilled) {
+  if (jointLanesFilled) {  // the joints as the last relax pass left them
     jointLanes.writeBack(solverJoints, sb, def, h);
     jointLanesFilled = false;
+    laps.lap(&StepProfile::relax);
   }
   pass.relax = false;
   overColors<JointAccess::Velocities>(nullptr, kernel(restituteBundles), pass);
