@@ -409,40 +409,6 @@ HWY_INLINE void restituteGroup(D d, const BundlePass& pass, ContactBundle& c, Bu
   storeVelocities(d, pass.states, c.offsetB + lane, pass.sinkOffset, b);
 }
 
-// Turns (qc, qs) by `angle`: a Taylor series while every lane's turn is small, as rotationBy.
-template <class D>
-HWY_INLINE void turn(D d, const V<D>& angle, V<D>* qc, V<D>* qs) {
-  V<D> c, s;
-  if (hn::AllTrue(d, hn::Lt(hn::Abs(angle), hn::Set(d, kSmallTurn)))) {
-    const V<D> a2 = hn::Mul(angle, angle);
-    const V<D> one = hn::Set(d, 1.0);
-    c = hn::Sub(one,
-                hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 2.0),
-                                    hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 24.0),
-                                                        hn::Mul(a2, hn::Set(d, 1.0 / 720.0)))))));
-    s = hn::Mul(
-        angle,
-        hn::Sub(one,
-                hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 6.0),
-                                    hn::Mul(a2, hn::Sub(hn::Set(d, 1.0 / 120.0),
-                                                        hn::Mul(a2, hn::Set(d, 1.0 / 5040.0))))))));
-  } else {
-    HWY_ALIGN double lanes[kBundleLanes], cs[kBundleLanes], ss[kBundleLanes];
-    hn::Store(angle, d, lanes);
-    for (size_t i = 0; i < hn::Lanes(d); ++i) {
-      const Rot r = rotationBy(lanes[i]);
-      cs[i] = r.c;
-      ss[i] = r.s;
-    }
-    c = hn::Load(d, cs);
-    s = hn::Load(d, ss);
-  }
-  const V<D> newC = hn::Sub(hn::Mul(*qc, c), hn::Mul(*qs, s));
-  const V<D> newS = hn::Add(hn::Mul(*qs, c), hn::Mul(*qc, s));
-  *qc = newC;
-  *qs = newS;
-}
-
 // One NGS pass: each point's overlap beyond the slop is pushed out by moving both bodies along
 // the normal at the shared point, both points of a lane together (their 2x2 block).
 template <class D>

@@ -6,8 +6,11 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
+
 #include "body_lanes-inl.h"
 #include "joint_lanes.hpp"
+#include "position_pass.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace impulse2d {
@@ -27,19 +30,68 @@ HWY_INLINE Rows<D> loadRows(D d, const JointBundle& j, size_t lane) {
           hn::Load(d, j.mass11 + lane)};
 }
 
-// One body's arm at its pose now: its view's q = q0 * Rot(qc, qs) (SubstepBodies::view; q0 itself
-// for a body that does not move), times the anchor (anchorGap, joint_revolute.cpp).
+// One body's view (SubstepBodies::view) in a lane group: its rotation q = q0 * Rot(qc, qs), and
+// for the position passes its centre center0 + (dx, dy) and angle angle0 + turned; for a body that
+// does not move, q0, center0 and angle0 themselves.
 template <class D>
-HWY_INLINE void arm(D d, const double* q0c, const double* q0s, const double* turns,
-                    const double* anchorX, const double* anchorY, size_t lane, const V<D>& qc,
-                    const V<D>& qs, V<D>* rx, V<D>* ry) {
+struct View {
+  V<D> c, s, x, y, angle;
+};
+
+template <class D>
+HWY_INLINE View<D> viewOf(D d, const double* q0c, const double* q0s, const double* turns,
+                          size_t lane, const Bodies<D>& body) {
+  View<D> v;
   const V<D> c0 = hn::Load(d, q0c + lane), s0 = hn::Load(d, q0s + lane);
   const auto moves = hn::Gt(hn::Load(d, turns + lane), hn::Zero(d));
-  const V<D> c = hn::IfThenElse(moves, hn::Sub(hn::Mul(c0, qc), hn::Mul(s0, qs)), c0);
-  const V<D> s = hn::IfThenElse(moves, hn::Add(hn::Mul(s0, qc), hn::Mul(c0, qs)), s0);
+  v.c = hn::IfThenElse(moves, hn::Sub(hn::Mul(c0, body.qc), hn::Mul(s0, body.qs)), c0);
+  v.s = hn::IfThenElse(moves, hn::Add(hn::Mul(s0, body.qc), hn::Mul(c0, body.qs)), s0);
+  return v;
+}
+
+template <class D>
+HWY_INLINE View<D> poseOf(D d, const double* q0c, const double* q0s, const double* turns,
+                          const double* center0X, const double* center0Y, const double* angle0,
+                          size_t lane, const Bodies<D>& body) {
+  View<D> v = viewOf(d, q0c, q0s, turns, lane, body);
+  const auto moves = hn::Gt(hn::Load(d, turns + lane), hn::Zero(d));
+  const V<D> x0 = hn::Load(d, center0X + lane), y0 = hn::Load(d, center0Y + lane);
+  const V<D> a0 = hn::Load(d, angle0 + lane);
+  v.x = hn::IfThenElse(moves, hn::Add(x0, body.dx), x0);
+  v.y = hn::IfThenElse(moves, hn::Add(y0, body.dy), y0);
+  v.angle = hn::IfThenElse(moves, hn::Add(a0, body.turned), a0);
+  return v;
+}
+
+// The arm q * anchor (anchorGap, joint_revolute.cpp).
+template <class D>
+HWY_INLINE void arm(D d, const View<D>& v, const double* anchorX, const double* anchorY,
+                    size_t lane, V<D>* rx, V<D>* ry) {
   const V<D> ax = hn::Load(d, anchorX + lane), ay = hn::Load(d, anchorY + lane);
-  *rx = hn::Sub(hn::Mul(c, ax), hn::Mul(s, ay));
-  *ry = hn::Add(hn::Mul(s, ax), hn::Mul(c, ay));
+  *rx = hn::Sub(hn::Mul(v.c, ax), hn::Mul(v.s, ay));
+  *ry = hn::Add(hn::Mul(v.s, ax), hn::Mul(v.c, ay));
+}
+
+// K^-1 at these arms: pointMass, then safeInverse (zero where K is singular, det == 0 as it asks
+// it: false for a NaN on every instruction set, which Ne is not).
+template <class D>
+HWY_INLINE void invertPointMass(D d, const JointBundle& j, size_t lane, const V<D>& rAx,
+                                const V<D>& rAy, const V<D>& rBx, const V<D>& rBy, V<D>* mass00,
+                                V<D>* mass01, V<D>* mass11) {
+  const V<D> mA = hn::Load(d, j.invMassA + lane), mB = hn::Load(d, j.invMassB + lane);
+  const V<D> iA = hn::Load(d, j.invInertiaA + lane), iB = hn::Load(d, j.invInertiaB + lane);
+  const V<D> m = hn::Add(mA, mB);
+  const V<D> k00 =
+      hn::Add(hn::Add(m, hn::Mul(hn::Mul(iA, rAy), rAy)), hn::Mul(hn::Mul(iB, rBy), rBy));
+  const V<D> k01 = hn::Sub(hn::Mul(hn::Mul(hn::Neg(iA), rAx), rAy), hn::Mul(hn::Mul(iB, rBx), rBy));
+  const V<D> k11 =
+      hn::Add(hn::Add(m, hn::Mul(hn::Mul(iA, rAx), rAx)), hn::Mul(hn::Mul(iB, rBx), rBx));
+  const V<D> det = hn::Sub(hn::Mul(k00, k11), hn::Mul(k01, k01));
+  const auto singular = hn::Eq(det, hn::Zero(d));
+  const V<D> invDet = hn::Div(hn::Set(d, 1.0), det);
+  *mass00 = hn::IfThenZeroElse(singular, hn::Mul(k11, invDet));
+  *mass01 = hn::IfThenZeroElse(singular, hn::Mul(hn::Neg(k01), invDet));
+  *mass11 = hn::IfThenZeroElse(singular, hn::Mul(k00, invDet));
 }
 
 // std::max(a, b) and std::clamp(v, lo, hi), NaN and all.
@@ -73,30 +125,16 @@ HWY_INLINE void limitBiases(D d, JointBundle& j, size_t lane, double step, const
   hn::Store(bias(hn::Sub(hn::Load(d, j.upper + lane), angle)), d, j.upperBias + lane);
 }
 
-// prepareRevolute with rigid feedback: the arms, and K^-1 (pointMass, then safeInverse: zero
-// where K is singular).
+// prepareRevolute with rigid feedback: the arms and K^-1.
 template <class D>
 HWY_INLINE Rows<D> prepare(D d, JointBundle& j, size_t lane, double h, const Bodies<D>& a,
                            const Bodies<D>& b) {
   Rows<D> r;
-  arm(d, j.q0cA, j.q0sA, j.turnsA, j.anchorAx, j.anchorAy, lane, a.qc, a.qs, &r.rAx, &r.rAy);
-  arm(d, j.q0cB, j.q0sB, j.turnsB, j.anchorBx, j.anchorBy, lane, b.qc, b.qs, &r.rBx, &r.rBy);
-  const V<D> mA = hn::Load(d, j.invMassA + lane), mB = hn::Load(d, j.invMassB + lane);
-  const V<D> iA = hn::Load(d, j.invInertiaA + lane), iB = hn::Load(d, j.invInertiaB + lane);
-  const V<D> m = hn::Add(mA, mB);
-  const V<D> k00 =
-      hn::Add(hn::Add(m, hn::Mul(hn::Mul(iA, r.rAy), r.rAy)), hn::Mul(hn::Mul(iB, r.rBy), r.rBy));
-  const V<D> k01 =
-      hn::Sub(hn::Mul(hn::Mul(hn::Neg(iA), r.rAx), r.rAy), hn::Mul(hn::Mul(iB, r.rBx), r.rBy));
-  const V<D> k11 =
-      hn::Add(hn::Add(m, hn::Mul(hn::Mul(iA, r.rAx), r.rAx)), hn::Mul(hn::Mul(iB, r.rBx), r.rBx));
-  const V<D> det = hn::Sub(hn::Mul(k00, k11), hn::Mul(k01, k01));
-  // det == 0 as safeInverse asks it: false for a NaN on every instruction set (Ne is not).
-  const auto singular = hn::Eq(det, hn::Zero(d));
-  const V<D> invDet = hn::Div(hn::Set(d, 1.0), det);
-  r.mass00 = hn::IfThenZeroElse(singular, hn::Mul(k11, invDet));
-  r.mass01 = hn::IfThenZeroElse(singular, hn::Mul(hn::Neg(k01), invDet));
-  r.mass11 = hn::IfThenZeroElse(singular, hn::Mul(k00, invDet));
+  arm(d, viewOf(d, j.q0cA, j.q0sA, j.turnsA, lane, a), j.anchorAx, j.anchorAy, lane, &r.rAx,
+      &r.rAy);
+  arm(d, viewOf(d, j.q0cB, j.q0sB, j.turnsB, lane, b), j.anchorBx, j.anchorBy, lane, &r.rBx,
+      &r.rBy);
+  invertPointMass(d, j, lane, r.rAx, r.rAy, r.rBx, r.rBy, &r.mass00, &r.mass01, &r.mass11);
   hn::Store(r.rAx, d, j.rAx + lane);
   hn::Store(r.rAy, d, j.rAy + lane);
   hn::Store(r.rBx, d, j.rBx + lane);
@@ -255,6 +293,110 @@ HWY_INLINE void group(D d, const JointLaneArgs& args, JointLanePass pass, JointB
   storeVelocities(d, args.states, j.offsetB + lane, args.sinkOffset, b);
 }
 
+// A body moved and turned by a position correction (applyJointCorrection's turnBy), then written
+// back as SubstepBodies::store does: the motion since the step began from the pose, which is not
+// always the motion it was read as, to the last bit.
+template <class D, class M>
+HWY_INLINE void moveAndStore(D d, const JointLaneArgs& args, const int32_t* offset,
+                             const double* q0c, const double* q0s, const double* center0X,
+                             const double* center0Y, const double* angle0, size_t lane,
+                             const M& corrects, View<D> v, const V<D>& moveX, const V<D>& moveY,
+                             const V<D>& turnAngle, Bodies<D> body) {
+  View<D> moved = v;
+  moved.x = hn::Add(v.x, moveX);
+  moved.y = hn::Add(v.y, moveY);
+  moved.angle = hn::Add(v.angle, turnAngle);
+  turn(d, turnAngle, &moved.c, &moved.s);
+  v.x = hn::IfThenElse(corrects, moved.x, v.x);
+  v.y = hn::IfThenElse(corrects, moved.y, v.y);
+  v.angle = hn::IfThenElse(corrects, moved.angle, v.angle);
+  v.c = hn::IfThenElse(corrects, moved.c, v.c);
+  v.s = hn::IfThenElse(corrects, moved.s, v.s);
+  const V<D> c0 = hn::Load(d, q0c + lane), s0 = hn::Load(d, q0s + lane);
+  body.dx = hn::Sub(v.x, hn::Load(d, center0X + lane));
+  body.dy = hn::Sub(v.y, hn::Load(d, center0Y + lane));
+  body.turned = hn::Sub(v.angle, hn::Load(d, angle0 + lane));
+  body.qc = hn::Add(hn::Mul(c0, v.c), hn::Mul(s0, v.s));  // q0.inverseTimes(q)
+  body.qs = hn::Sub(hn::Mul(c0, v.s), hn::Mul(s0, v.c));
+  storePoses(d, args.states, offset + lane, args.sinkOffset, body);
+}
+
+// solveRevolutePosition without limits, then applyJointCorrection: the gap between the anchors,
+// its correction K^-1 C (C at most kMaxLinearCorrection long), shrunk until neither body moves
+// more than kMaxLinearCorrection nor turns more than kMaxAngularCorrection; none where that is
+// not finite. Returns each lane's gap before the correction.
+template <class D>
+HWY_INLINE V<D> positionGroup(D d, const JointLaneArgs& args, const JointBundle& j, size_t lane) {
+  const Bodies<D> a = loadBodies(d, args.states, j.offsetA + lane);
+  const Bodies<D> b = loadBodies(d, args.states, j.offsetB + lane);
+  const View<D> va =
+      poseOf(d, j.q0cA, j.q0sA, j.turnsA, j.center0Ax, j.center0Ay, j.angle0A, lane, a);
+  const View<D> vb =
+      poseOf(d, j.q0cB, j.q0sB, j.turnsB, j.center0Bx, j.center0By, j.angle0B, lane, b);
+  V<D> rAx, rAy, rBx, rBy;
+  arm(d, va, j.anchorAx, j.anchorAy, lane, &rAx, &rAy);
+  arm(d, vb, j.anchorBx, j.anchorBy, lane, &rBx, &rBy);
+  V<D> cx = hn::Sub(hn::Add(vb.x, rBx), hn::Add(va.x, rAx));
+  V<D> cy = hn::Sub(hn::Add(vb.y, rBy), hn::Add(va.y, rAy));
+  const V<D> error = hn::Sqrt(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)));
+  const V<D> maxLinear = hn::Set(d, kMaxLinearCorrection);
+  const auto far = hn::Gt(error, maxLinear);
+  const V<D> shrink = hn::Div(maxLinear, error);
+  cx = hn::IfThenElse(far, hn::Mul(cx, shrink), cx);
+  cy = hn::IfThenElse(far, hn::Mul(cy, shrink), cy);
+  V<D> m00, m01, m11;
+  invertPointMass(d, j, lane, rAx, rAy, rBx, rBy, &m00, &m01, &m11);
+  const V<D> px = hn::Neg(hn::Add(hn::Mul(m00, cx), hn::Mul(m01, cy)));
+  const V<D> py = hn::Neg(hn::Add(hn::Mul(m01, cx), hn::Mul(m11, cy)));
+  const V<D> angularA = hn::Sub(hn::Mul(rAx, py), hn::Mul(rAy, px));
+  const V<D> angularB = hn::Sub(hn::Mul(rBx, py), hn::Mul(rBy, px));
+  // applyJointCorrection.
+  const V<D> mA = hn::Load(d, j.invMassA + lane), mB = hn::Load(d, j.invMassB + lane);
+  const V<D> iA = hn::Load(d, j.invInertiaA + lane), iB = hn::Load(d, j.invInertiaB + lane);
+  const V<D> moved = hn::Mul(maxOf<D>(mA, mB), hn::Sqrt(hn::Add(hn::Mul(px, px), hn::Mul(py, py))));
+  const V<D> turned = maxOf<D>(hn::Abs(hn::Mul(iA, angularA)), hn::Abs(hn::Mul(iB, angularB)));
+  const V<D> maxAngular = hn::Set(d, kMaxAngularCorrection);
+  V<D> scale = hn::Set(d, 1.0);
+  scale = hn::IfThenElse(hn::Gt(moved, maxLinear), hn::Div(maxLinear, moved), scale);
+  scale = hn::IfThenElse(hn::Gt(hn::Mul(turned, scale), maxAngular), hn::Div(maxAngular, turned),
+                         scale);
+  const auto corrects = hn::IsFinite(hn::Add(moved, turned));
+  const V<D> moveA = hn::Mul(scale, mA), moveB = hn::Mul(scale, mB);
+  moveAndStore(d, args, j.offsetA, j.q0cA, j.q0sA, j.center0Ax, j.center0Ay, j.angle0A, lane,
+               corrects, va, hn::Neg(hn::Mul(moveA, px)), hn::Neg(hn::Mul(moveA, py)),
+               hn::Mul(hn::Mul(hn::Neg(scale), iA), angularA), a);
+  moveAndStore(d, args, j.offsetB, j.q0cB, j.q0sB, j.center0Bx, j.center0By, j.angle0B, lane,
+               corrects, vb, hn::Mul(moveB, px), hn::Mul(moveB, py),
+               hn::Mul(hn::Mul(scale, iB), angularB), b);
+  return error;
+}
+
+void PositionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
+                        double* widest, bool* within) {
+  auto note = [&](auto d, const auto& errors, int count) {
+    HWY_ALIGN double lanes[kJointLanes];
+    hn::Store(errors, d, lanes);
+    for (int i = 0; i < count; ++i) {
+      if (*widest < lanes[i]) *widest = lanes[i];  // std::max({widest, error, 0})
+      if (!(lanes[i] <= linearSlop)) *within = false;
+    }
+  };
+  if (lane >= 0) {
+    const hn::CappedTag<double, 1> d1;
+    note(d1, positionGroup(d1, args, args.bundles[lane / kJointLanes], lane % kJointLanes), 1);
+    return;
+  }
+  const hn::CappedTag<double, kJointLanes> d;
+  const size_t n = hn::Lanes(d);
+  for (int k = begin; k < end; ++k) {
+    const JointBundle& j = args.bundles[k];
+    for (size_t first = 0; first < static_cast<size_t>(j.laneCount); first += n) {
+      note(d, positionGroup(d, args, j, first),
+           static_cast<int>(std::min(n, static_cast<size_t>(j.laneCount) - first)));
+    }
+  }
+}
+
 void RunJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
   const hn::CappedTag<double, kJointLanes> d;
   const size_t n = hn::Lanes(d);
@@ -279,12 +421,17 @@ namespace impulse2d {
 
 HWY_EXPORT(RunJointLanes);
 HWY_EXPORT(RunJointLane);
+HWY_EXPORT(PositionJointLanes);
 
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
   HWY_DYNAMIC_DISPATCH(RunJointLanes)(args, pass, begin, end);
 }
 void runJointLane(const JointLaneArgs& args, JointLanePass pass, int lane) {
   HWY_DYNAMIC_DISPATCH(RunJointLane)(args, pass, lane);
+}
+void positionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
+                        double* widest, bool* within) {
+  HWY_DYNAMIC_DISPATCH(PositionJointLanes)(args, begin, end, lane, linearSlop, widest, within);
 }
 
 }  // namespace impulse2d

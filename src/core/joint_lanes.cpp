@@ -6,7 +6,7 @@ namespace {
 
 void setBody(const SubstepBodies& bodies, int slot, const Vec2& localAnchor, int32_t& offset,
              double& invMass, double& invInertia, double& q0c, double& q0s, double& turns,
-             double& angle0, double& anchorX, double& anchorY) {
+             double& angle0, double& anchorX, double& anchorY, double& center0X, double& center0Y) {
   const int64_t read = bodies.readRow(slot) * kStateDoubles;
   offset = bodies.writeRow(slot) >= 0 ? static_cast<int32_t>(read) : ~static_cast<int32_t>(read);
   const BodyVelocity v = bodies.velocityView(slot);
@@ -17,6 +17,9 @@ void setBody(const SubstepBodies& bodies, int slot, const Vec2& localAnchor, int
   q0s = q0.s;
   turns = bodies.entryOf(slot) >= 0 ? 1.0 : 0.0;
   angle0 = bodies.viewAngle0(slot);
+  const Vec2 center0 = bodies.viewCenter0(slot);
+  center0X = center0.x();
+  center0Y = center0.y();
   const Vec2 anchor = localAnchor - localCenter;  // as anchorGap (joint_revolute.cpp)
   anchorX = anchor.x();
   anchorY = anchor.y();
@@ -36,6 +39,7 @@ void setEmptyLane(JointBundle& j, int lane, int32_t identityOffset) {
   j.lower[lane] = j.upper[lane] = j.referenceAngle[lane] = j.angle0A[lane] = j.angle0B[lane] = 0.0;
   j.axialMass[lane] = j.lowerBias[lane] = j.upperBias[lane] = 0.0;
   j.motorImpulse[lane] = j.lowerImpulse[lane] = j.upperImpulse[lane] = 0.0;
+  j.center0Ax[lane] = j.center0Ay[lane] = j.center0Bx[lane] = j.center0By[lane] = 0.0;
 }
 
 }  // namespace
@@ -58,10 +62,10 @@ int JointLanes::addLane(Joint& joint, int k, const SubstepBodies& bodies, double
   j.joint[lane] = k;
   setBody(bodies, joint.bodyA, joint.localAnchorA, j.offsetA[lane], j.invMassA[lane],
           j.invInertiaA[lane], j.q0cA[lane], j.q0sA[lane], j.turnsA[lane], j.angle0A[lane],
-          j.anchorAx[lane], j.anchorAy[lane]);
+          j.anchorAx[lane], j.anchorAy[lane], j.center0Ax[lane], j.center0Ay[lane]);
   setBody(bodies, joint.bodyB, joint.localAnchorB, j.offsetB[lane], j.invMassB[lane],
           j.invInertiaB[lane], j.q0cB[lane], j.q0sB[lane], j.turnsB[lane], j.angle0B[lane],
-          j.anchorBx[lane], j.anchorBy[lane]);
+          j.anchorBx[lane], j.anchorBy[lane], j.center0Bx[lane], j.center0By[lane]);
   j.hasMotor[lane] = params.enableMotor ? 1.0 : 0.0;
   j.hasLimit[lane] = params.enableLimit ? 1.0 : 0.0;
   j.anyMotor = j.anyMotor || params.enableMotor;
@@ -134,15 +138,27 @@ void JointLanes::fromJoint(const Joint& joint, JointBundle& j, int lane) {
   j.upperImpulse[lane] = joint.upperImpulse;
 }
 
-void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies,
-                           const WorldDef& def, double h) {
-  const Feedback rigid;
+void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies) {
+  // view(slot).angle, without the rest of the view.
+  auto angleOf = [&](int slot) {
+    const int entry = bodies.entryOf(slot);
+    return entry < 0 ? bodies.viewAngle0(slot)
+                     : bodies.viewAngle0(slot) + bodies.states()[entry].turned;
+  };
   for (const JointBundle& j : bundles_) {
     for (int lane = 0; lane < j.laneCount; ++lane) {
       Joint& joint = joints[static_cast<size_t>(j.joint[lane])];
       toJoint(j, lane, joint);
-      SolverBody a = bodies.view(joint.bodyA), b = bodies.view(joint.bodyB);
-      prepareJoint(joint, a, b, def, rigid, h);
+      // The rest of what prepareRevolute set in the last relax pass (rigid feedback).
+      joint.feedback = Feedback();
+      joint.axialMass = j.axialMass[lane];
+      joint.angle = angleOf(joint.bodyB) - angleOf(joint.bodyA) - joint.referenceAngle;
+      joint.pairBias.x() = joint.pairBias.y() = 0.0;
+      if (joint.params.enableLimit) {
+        joint.lowerBias = j.lowerBias[lane];
+        joint.upperBias = j.upperBias[lane];
+        joint.lowerFeedback = joint.upperFeedback = Feedback();
+      }
     }
   }
 }

@@ -9,9 +9,10 @@
 // scalar path, on every instruction set. A lane whose warm start would break the motion limits
 // (warmStartJoint's rescaling, rare) is left untouched and handed back to the scalar path.
 //
-//   per step:       fill (the bodies' rows, start rotations, anchors, kept impulse)
+//   per step:       fill (the bodies' rows, start poses, anchors, kept impulses)
 //   per sub-step:   [prepare +] warm start, solve, prepare + relax (solve at the new poses)
-//   after them:     writeBack (the impulse, and the rows as the last relax prepared them)
+//   after them:     writeBack (the impulses, and the rows as the last relax prepared them),
+//                   then the NGS position passes (joints without limits; limits stay scalar)
 #pragma once
 
 #include <cstddef>
@@ -51,6 +52,9 @@ struct alignas(64) JointBundle {
   double axialMass[kJointLanes];                          // kg m^2
   double lowerBias[kJointLanes], upperBias[kJointLanes];  // rad/s, as the last prepare left them
   double motorImpulse[kJointLanes], lowerImpulse[kJointLanes], upperImpulse[kJointLanes];
+  // m, each view's centre of mass as the step began (the position passes').
+  double center0Ax[kJointLanes], center0Ay[kJointLanes];
+  double center0Bx[kJointLanes], center0By[kJointLanes];
   // BodyState offsets (row * kStateDoubles); ~offset for a body the lane must not write (static,
   // kinematic, an empty lane), as ContactBundle.
   int32_t offsetA[kJointLanes];
@@ -60,7 +64,7 @@ struct alignas(64) JointBundle {
   bool anyMotor, anyLimit;
   uint8_t scalarLanes;  // bit i: lane i's warm start was left to the scalar path (above)
 };
-static_assert(offsetof(JointBundle, upperImpulse) % 64 == 0, "the doubles in whole lines");
+static_assert(offsetof(JointBundle, center0By) % 64 == 0, "the doubles in whole lines");
 
 /// What the joint kernels do in one pass over some bundles.
 enum class JointLanePass { PrepareAndWarmStart, WarmStart, Solve, PrepareAndSolve };
@@ -77,6 +81,11 @@ struct JointLaneArgs {
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end);
 /// The same for one lane (bundle * kJointLanes + lane) on its own.
 void runJointLane(const JointLaneArgs& args, JointLanePass pass, int lane);
+/// One NGS position pass (solveRevolutePosition) over the bundles [begin, end), none with limits,
+/// or over one lane when `lane` >= 0 (then begin and end are not read). Raises *widest to the
+/// largest joint error met (m), and clears *within where one exceeds `linearSlop`.
+void positionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
+                        double* widest, bool* within);
 
 class JointLanes {
  public:
@@ -99,10 +108,9 @@ class JointLanes {
   /// Copies a lane's rows and impulse into its joint (for the scalar path), and back.
   static void toJoint(const JointBundle& bundle, int lane, Joint& joint);
   static void fromJoint(const Joint& joint, JointBundle& bundle, int lane);
-  /// After the sub-steps: each lane's impulse into its joint, and the joint's rows prepared at
-  /// the poses now, as the scalar path's last relax pass left them.
-  void writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies, const WorldDef& def,
-                 double h);
+  /// After the sub-steps: each lane's impulses and rows into its joint, as the scalar path's
+  /// last relax pass left them.
+  void writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies);
 
  private:
   /// Fills the next lane (opening a bundle when the last is full) with solver joint k; returns

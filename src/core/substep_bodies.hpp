@@ -121,6 +121,8 @@ class SubstepBodies {
   std::pair<Rot, Vec2> viewFrame(int slot) const;
   /// view(slot).angle less the turn since the step began (all of it when the body does not move).
   double viewAngle0(int slot) const;
+  /// view(slot).center less the move since the step began (likewise).
+  Vec2 viewCenter0(int slot) const;
   /// Writes back what a joint's velocity rows changed, to a dynamic entry.
   void store(int slot, const BodyVelocity& view);
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
@@ -201,6 +203,11 @@ inline double SubstepBodies::viewAngle0(int slot) const {
   if (entry < 0) return (*bodies_)[slot].angle;
   if (const MemberStart* m = clusterRows_.ofSlot(slot)) return m->angle0;
   return starts_[entry].angle0;
+}
+
+inline Vec2 SubstepBodies::viewCenter0(int slot) const {
+  const int entry = entryOfSlot_[slot];
+  return entry < 0 ? (*bodies_)[slot].center : sims_[entry].center0;
 }
 
 inline BodyVelocity SubstepBodies::velocityView(int slot) const {

@@ -116,6 +116,25 @@ void WorldImpl::warmStartScalarLanes(int begin, int end, const MotionLimits& lim
   }
 }
 
+template <class JointOp>
+void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int lane, int worker,
+                              const JointOp& jointOp) {
+  const JointBundle& j = jointLanes.bundle(bundle);
+  if (j.anyLimit) {  // the limits' position rows stay scalar: every lane of the bundle
+    if (lane >= 0) {
+      onJoint<JointAccess::WritePoses>(j.joint[lane % kJointLanes], worker, jointOp);
+      return;
+    }
+    for (int i = 0; i < j.laneCount; ++i)
+      onJoint<JointAccess::WritePoses>(j.joint[i], worker, jointOp);
+    return;
+  }
+  bool within = true;
+  positionJointLanes(args, bundle, bundle + 1, lane, def.linearSlop,
+                     &scratch.workerWidest[static_cast<size_t>(worker)], &within);
+  if (!within) scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
+}
+
 template <WorldImpl::JointAccess access, class JointOp>
 void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass, double h) {
   // The colour's bundles, then its joints that take no lane: all independent of each other.
@@ -133,8 +152,12 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
       args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(worker) * kStateDoubles);
       const int from = firstBundle + block * kJointBundlesPerBlock;
       const int to = std::min(firstBundle + bundles, from + kJointBundlesPerBlock);
-      runJointLanes(args, lanePass, from, to);
-      if (warmStarts) warmStartScalarLanes(from, to, limits);
+      if constexpr (access == JointAccess::WritePoses) {
+        for (int k = from; k < to; ++k) positionLanes(args, k, -1, worker, jointOp);
+      } else {
+        runJointLanes(args, lanePass, from, to);
+        if (warmStarts) warmStartScalarLanes(from, to, limits);
+      }
       return;
     }
     const int from = (block - bundleBlocks) * kJointsPerBlock;
@@ -179,6 +202,10 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
         const int lane = jointLanesFilled ? jointLanes.overflowLane(k - jointStart[colors]) : -1;
         if (lane < 0) {
           onJoint<access>(k, 0, jointOp);
+          continue;
+        }
+        if constexpr (access == JointAccess::WritePoses) {
+          positionLanes(args, lane / kJointLanes, lane, 0, jointOp);
           continue;
         }
         runJointLane(args, lanePass, lane);
@@ -301,8 +328,7 @@ void WorldImpl::solveSubsteps(double dt) {
     laps.lap(&StepProfile::relax);
   }
   if (jointLanesFilled) {  // the joints as the last relax pass left them
-    jointLanes.writeBack(solverJoints, sb, def, h);
-    jointLanesFilled = false;
+    jointLanes.writeBack(solverJoints, sb);
     laps.lap(&StepProfile::relax);
   }
   pass.relax = false;
@@ -312,8 +338,9 @@ void WorldImpl::solveSubsteps(double dt) {
   if (soft) {
     withholdFeedbackOfWorseGroups();
   } else {
-    correctSubstepPositions(pass);
+    correctSubstepPositions(pass);  // with the joint lanes' position pass
   }
+  jointLanesFilled = false;
   laps.lap(&StepProfile::positions);
   stepWorkers.stage(bodyBlocks, [&](int block, int) {
     sb.finish(bodies.items, block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
