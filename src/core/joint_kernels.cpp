@@ -183,9 +183,10 @@ HWY_INLINE void warmStart(D d, const JointLaneArgs& args, JointBundle& j, size_t
   Bodies<D> a1 = *a, b1 = *b;
   apply(j, lane, d, px, py, hn::Add(hn::Sub(hn::Mul(r.rAx, py), hn::Mul(r.rAy, px)), axial),
         hn::Add(hn::Sub(hn::Mul(r.rBx, py), hn::Mul(r.rBy, px)), axial), &a1, &b1);
-  const V<D> maxSpeedSquared = hn::Set(d, args.maxSpeedSquared);
-  const V<D> halfMaxTurnRate = hn::Set(d, args.halfMaxTurnRate);
-  const bool limited = args.maxSpeedSquared > 0.0;
+  // warmStartJoint's clearlyWithin.
+  const V<D> maxSpeedSquared = hn::Set(d, args.limits.maxSpeedSquared);
+  const V<D> halfMaxTurnRate = hn::Set(d, 0.5 * args.limits.maxTurnRate);
+  const bool limited = args.limits.maxSpeedSquared > 0.0;
   auto within = [&](const Bodies<D>& before, const Bodies<D>& after) {
     const V<D> dvx = hn::Sub(after.vx, before.vx), dvy = hn::Sub(after.vy, before.vy);
     const V<D> speedSquared = hn::Add(hn::Mul(dvx, dvx), hn::Mul(dvy, dvy));
@@ -281,10 +282,8 @@ HWY_INLINE void group(D d, const JointLaneArgs& args, JointLanePass pass, JointB
                       size_t lane) {
   Bodies<D> a = loadBodies(d, args.states, j.offsetA + lane);
   Bodies<D> b = loadBodies(d, args.states, j.offsetB + lane);
-  const bool prepares =
-      pass == JointLanePass::PrepareAndWarmStart || pass == JointLanePass::PrepareAndSolve;
-  const Rows<D> r = prepares ? prepare(d, j, lane, args.h, a, b) : loadRows(d, j, lane);
-  if (pass == JointLanePass::PrepareAndWarmStart || pass == JointLanePass::WarmStart) {
+  const Rows<D> r = prepares(pass) ? prepare(d, j, lane, args.h, a, b) : loadRows(d, j, lane);
+  if (warmsStart(pass)) {
     warmStart(d, args, j, lane, r, &a, &b);
   } else {
     solve(d, j, lane, r, &a, &b);

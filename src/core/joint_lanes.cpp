@@ -12,15 +12,14 @@ void setBody(const SubstepBodies& bodies, int slot, const Vec2& localAnchor, int
   const BodyVelocity v = bodies.velocityView(slot);
   invMass = v.invMass;
   invInertia = v.invInertia;
-  const auto [q0, localCenter] = bodies.viewFrame(slot);
-  q0c = q0.c;
-  q0s = q0.s;
-  turns = bodies.entryOf(slot) >= 0 ? 1.0 : 0.0;
-  angle0 = bodies.viewAngle0(slot);
-  const Vec2 center0 = bodies.viewCenter0(slot);
-  center0X = center0.x();
-  center0Y = center0.y();
-  const Vec2 anchor = localAnchor - localCenter;  // as anchorGap (joint_revolute.cpp)
+  const SubstepBodies::ViewStart start = bodies.viewStart(slot);
+  q0c = start.q0.c;
+  q0s = start.q0.s;
+  turns = start.moves ? 1.0 : 0.0;
+  angle0 = start.angle0;
+  center0X = start.center0.x();
+  center0Y = start.center0.y();
+  const Vec2 anchor = localAnchor - start.localCenter;  // as anchorGap (joint_revolute.cpp)
   anchorX = anchor.x();
   anchorY = anchor.y();
 }
@@ -141,9 +140,8 @@ void JointLanes::fromJoint(const Joint& joint, JointBundle& j, int lane) {
 void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies) {
   // view(slot).angle, without the rest of the view.
   auto angleOf = [&](int slot) {
-    const int entry = bodies.entryOf(slot);
-    return entry < 0 ? bodies.viewAngle0(slot)
-                     : bodies.viewAngle0(slot) + bodies.states()[entry].turned;
+    const SubstepBodies::ViewStart start = bodies.viewStart(slot);
+    return start.moves ? start.angle0 + bodies.states()[bodies.entryOf(slot)].turned : start.angle0;
   };
   for (const JointBundle& j : bundles_) {
     for (int lane = 0; lane < j.laneCount; ++lane) {

@@ -32,7 +32,7 @@ struct alignas(64) JointBundle {
   JointBundle() {}  // fill() writes every field of every lane: no zeroing
   double invMassA[kJointLanes], invInertiaA[kJointLanes];
   double invMassB[kJointLanes], invInertiaB[kJointLanes];
-  // Each view's rotation as the step began (SubstepBodies::viewFrame) and whether the body turns
+  // Each view's rotation as the step began (SubstepBodies::viewStart) and whether the body turns
   // this step (1) or is read as it stands (0: q is q0 itself, not q0 times the identity).
   double q0cA[kJointLanes], q0sA[kJointLanes], q0cB[kJointLanes], q0sB[kJointLanes];
   double turnsA[kJointLanes], turnsB[kJointLanes];
@@ -68,13 +68,19 @@ static_assert(offsetof(JointBundle, center0By) % 64 == 0, "the doubles in whole 
 
 /// What the joint kernels do in one pass over some bundles.
 enum class JointLanePass { PrepareAndWarmStart, WarmStart, Solve, PrepareAndSolve };
+inline bool warmsStart(JointLanePass pass) {
+  return pass == JointLanePass::PrepareAndWarmStart || pass == JointLanePass::WarmStart;
+}
+inline bool prepares(JointLanePass pass) {
+  return pass == JointLanePass::PrepareAndWarmStart || pass == JointLanePass::PrepareAndSolve;
+}
 
 struct JointLaneArgs {
   JointBundle* bundles = nullptr;
-  double* states = nullptr;                             // SubstepBodies::states(), as doubles
-  int32_t sinkOffset = 0;                               // this worker's sink row * kStateDoubles
-  double h = 0.0;                                       // s, the sub-step
-  double maxSpeedSquared = 0.0, halfMaxTurnRate = 0.0;  // MotionLimits, for the warm start
+  double* states = nullptr;  // SubstepBodies::states(), as doubles
+  int32_t sinkOffset = 0;    // this worker's sink row * kStateDoubles
+  double h = 0.0;            // s, the sub-step
+  MotionLimits limits;       // of a sub-step, for the warm start
 };
 
 /// The kernels (joint_kernels.cpp) over the bundles [begin, end), whose lanes share no body.

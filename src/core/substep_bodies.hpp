@@ -115,14 +115,16 @@ class SubstepBodies {
   /// Only the velocities and masses, for the passes that read no pose (v3_joint_grid spent a
   /// fifth of its joint passes on poses, and a tenth more on copying views with unread poses).
   BodyVelocity velocityView(int slot) const;
-  /// What view(slot) turns a joint's anchors with and measures them from: the rotation as the
-  /// step began (view().q is it times the turn since, unless the body does not move) and the
-  /// local centre of mass.
-  std::pair<Rot, Vec2> viewFrame(int slot) const;
-  /// view(slot).angle less the turn since the step began (all of it when the body does not move).
-  double viewAngle0(int slot) const;
-  /// view(slot).center less the move since the step began (likewise).
-  Vec2 viewCenter0(int slot) const;
+  /// Where view(slot) began the step: view() is this moved by the row's motion since (centre
+  /// moved by (dx, dy), angle and rotation turned), unless the body does not move this step.
+  struct ViewStart {
+    Vec2 center0;
+    double angle0;
+    Rot q0;
+    Vec2 localCenter;
+    bool moves;
+  };
+  ViewStart viewStart(int slot) const;
   /// Writes back what a joint's velocity rows changed, to a dynamic entry.
   void store(int slot, const BodyVelocity& view);
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when
@@ -175,39 +177,27 @@ inline SolverBody SubstepBodies::view(int slot) const {
     return e;
   }
   const BodyState& s = states_[entry];
-  const BodySim& sim = sims_[entry];
-  const BodyStart& start = starts_[entry];
+  const ViewStart start = viewStart(slot);
   SolverBody e;
   static_cast<BodyVelocity&>(e) = velocityView(slot);
-  e.center = sim.center0 + Eigen::Map<const Vec2>(&s.dx);
+  e.center = start.center0 + Eigen::Map<const Vec2>(&s.dx);
   e.angle = start.angle0 + s.turned;
   e.q = start.q0 * Rot::fromCosSin(s.qc, s.qs);
   e.localCenter = start.localCenter;
-  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {  // its cluster, seen from it
-    e.angle = m->angle0 + s.turned;
-    e.q = m->q0 * Rot::fromCosSin(s.qc, s.qs);
-    e.localCenter = m->viewLocalCenter;
-  }
   return e;
 }
 
-inline std::pair<Rot, Vec2> SubstepBodies::viewFrame(int slot) const {
+inline SubstepBodies::ViewStart SubstepBodies::viewStart(int slot) const {
   const int entry = entryOfSlot_[slot];
-  if (entry < 0) return {(*bodies_)[slot].xf.q, (*bodies_)[slot].localCenter};
-  if (const MemberStart* m = clusterRows_.ofSlot(slot)) return {m->q0, m->viewLocalCenter};
-  return {starts_[entry].q0, starts_[entry].localCenter};
-}
-
-inline double SubstepBodies::viewAngle0(int slot) const {
-  const int entry = entryOfSlot_[slot];
-  if (entry < 0) return (*bodies_)[slot].angle;
-  if (const MemberStart* m = clusterRows_.ofSlot(slot)) return m->angle0;
-  return starts_[entry].angle0;
-}
-
-inline Vec2 SubstepBodies::viewCenter0(int slot) const {
-  const int entry = entryOfSlot_[slot];
-  return entry < 0 ? (*bodies_)[slot].center : sims_[entry].center0;
+  if (entry < 0) {
+    const Body& body = (*bodies_)[slot];
+    return {body.center, body.angle, body.xf.q, body.localCenter, false};
+  }
+  const BodyStart& start = starts_[entry];
+  if (const MemberStart* m = clusterRows_.ofSlot(slot)) {  // its cluster, seen from it
+    return {sims_[entry].center0, m->angle0, m->q0, m->viewLocalCenter, true};
+  }
+  return {sims_[entry].center0, start.angle0, start.q0, start.localCenter, true};
 }
 
 inline BodyVelocity SubstepBodies::velocityView(int slot) const {

@@ -338,7 +338,7 @@ struct WorldImpl {
   /// One colour's joints in a pass while the lanes are filled: its bundles run `lanePass`, its
   /// other joints jointOp.
   template <JointAccess access, class JointOp>
-  void overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass, double h);
+  void overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass);
   /// A position pass over a joint bundle (or one lane of it, for lane >= 0): in the kernels, or
   /// jointOp on each lane's joint where the bundle has limits. The errors go to the worker's
   /// scratch.workerWidest and workerJointsOk, as correctSubstepPositions' jointOp does.
@@ -346,7 +346,7 @@ struct WorldImpl {
   void positionLanes(const JointLaneArgs& args, int bundle, int lane, int worker,
                      const JointOp& jointOp);
   /// The lanes of bundles [begin, end) whose warm start the kernels left to the scalar path.
-  void warmStartScalarLanes(int begin, int end, const MotionLimits& limits);
+  void warmStartScalarLanes(int begin, int end);
   // solveSubsteps' stages, in order.
   /// The active joints and the contacts coloured together, the joints copied colour by colour.
   void colorConstraints();

@@ -99,7 +99,8 @@ void WorldImpl::onJoint(int index, int worker, const JointOp& op) {
   }
 }
 
-void WorldImpl::warmStartScalarLanes(int begin, int end, const MotionLimits& limits) {
+void WorldImpl::warmStartScalarLanes(int begin, int end) {
+  const MotionLimits& limits = jointLaneArgs.limits;
   for (int k = begin; k < end; ++k) {
     JointBundle& bundle = jointLanes.bundle(k);
     for (int lane = 0; bundle.scalarLanes != 0 && lane < kJointLanes; ++lane) {
@@ -136,11 +137,8 @@ void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int lane, i
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
-void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass, double h) {
+void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass) {
   // The colour's bundles, then its joints that take no lane: all independent of each other.
-  const bool warmStarts =
-      lanePass == JointLanePass::WarmStart || lanePass == JointLanePass::PrepareAndWarmStart;
-  const MotionLimits limits = MotionLimits::of(def, h);
   const int firstBundle = jointLanes.bundleStart(color);
   const int bundles = jointLanes.bundleStart(color + 1) - firstBundle;
   const std::vector<int>& scalar = jointLanes.scalarJoints(color);
@@ -156,7 +154,7 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
         for (int k = from; k < to; ++k) positionLanes(args, k, -1, worker, jointOp);
       } else {
         runJointLanes(args, lanePass, from, to);
-        if (warmStarts) warmStartScalarLanes(from, to, limits);
+        if (warmsStart(lanePass)) warmStartScalarLanes(from, to);
       }
       return;
     }
@@ -179,7 +177,7 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
     if (!solverJoints.empty()) {  // no stage per colour for a world without joints
       for (int color = 0; color < colors; ++color) {
         if (jointLanesFilled) {
-          overLaneColor<access>(color, jointOp, lanePass, pass.h);
+          overLaneColor<access>(color, jointOp, lanePass);
           continue;
         }
         const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
@@ -196,8 +194,6 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
       // The overflow, one joint after the other: in a lane of its own where it has one.
       JointLaneArgs args = jointLaneArgs;
       args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(0) * kStateDoubles);
-      const bool warmStarts =
-          lanePass == JointLanePass::WarmStart || lanePass == JointLanePass::PrepareAndWarmStart;
       for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) {
         const int lane = jointLanesFilled ? jointLanes.overflowLane(k - jointStart[colors]) : -1;
         if (lane < 0) {
@@ -210,8 +206,7 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
         }
         runJointLane(args, lanePass, lane);
         const int bundle = lane / kJointLanes;
-        if (warmStarts && jointLanes.bundle(bundle).scalarLanes != 0)
-          warmStartScalarLanes(bundle, bundle + 1, MotionLimits::of(def, pass.h));
+        if (warmsStart(lanePass)) warmStartScalarLanes(bundle, bundle + 1);
       }
     }
   }
@@ -252,12 +247,10 @@ void WorldImpl::solveSubsteps(double dt) {
   jointLanesFilled = preparedByRelax;  // the lanes' rows are rigid and warm started
   if (jointLanesFilled) {
     jointLanes.fill(solverJoints, jointStart, stepColors.colorCount(), sb, h);
-    const MotionLimits limits = MotionLimits::of(def, h);
     jointLaneArgs.bundles = jointLanes.bundles();
     jointLaneArgs.h = h;
     jointLaneArgs.states = reinterpret_cast<double*>(sb.states());
-    jointLaneArgs.maxSpeedSquared = limits.maxSpeedSquared;
-    jointLaneArgs.halfMaxTurnRate = 0.5 * limits.maxTurnRate;
+    jointLaneArgs.limits = MotionLimits::of(def, h);
   }
   laps.lap(&StepProfile::prepare);
 
