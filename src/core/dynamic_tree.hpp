@@ -40,19 +40,26 @@ class DynamicTree {
   /// The same on the caller's stack, so that threads may query at once.
   template <class Visit>
   void query(const Aabb& box, std::vector<int>& stack, Visit&& visit) const {
-    if (root_ == kNull) return;
+    if (root_ == kNull || !nodes_[root_].aabb.overlaps(box)) return;
+    if (nodes_[root_].isLeaf()) {
+      visit(root_);
+      return;
+    }
+    // The stack holds inner nodes known to overlap: each child is tested where its parent is
+    // read, so a node that misses is never pushed.
     stack.clear();
     stack.push_back(root_);
     while (!stack.empty()) {
-      const int id = stack.back();
+      const Node& node = nodes_[stack.back()];
       stack.pop_back();
-      const Node& node = nodes_[id];
-      if (!node.aabb.overlaps(box)) continue;
-      if (node.isLeaf()) {
-        visit(id);
-      } else {
-        stack.push_back(node.child1);
-        stack.push_back(node.child2);
+      for (const int child : {node.child1, node.child2}) {
+        const Node& c = nodes_[child];
+        if (!c.aabb.overlaps(box)) continue;
+        if (c.isLeaf()) {
+          visit(child);
+        } else {
+          stack.push_back(child);
+        }
       }
     }
   }
