@@ -96,11 +96,13 @@ void WorldImpl::updateProxies(int slot, bool forced) {
 }
 
 void WorldImpl::destroyContactsOf(int bodySlot) {
-  eraseContactsIf([&](const Contact& c) {
-    if (c.bodyA != bodySlot && c.bodyB != bodySlot) return false;
+  for (Contact& c : contacts) {
+    if (c.bodyA != bodySlot && c.bodyB != bodySlot) continue;  // dead ones have -1: never
     wakeBody(bodies.items[c.bodyA == bodySlot ? c.bodyB : c.bodyA]);
-    return true;
-  });
+    contactKeys.erase(c.key);
+    c.bodyA = c.bodyB = -1;
+    ++deadContacts;
+  }
 }
 
 bool WorldImpl::shouldCollide(int bodyA, int bodyB) const {
@@ -537,6 +539,7 @@ bool touching(const Contact& contact, int point, double linearSlop) {
 std::vector<ContactInfo> World::contacts() const {
   std::vector<ContactInfo> out;
   for (const Contact& contact : impl_->contacts) {
+    if (WorldImpl::isDead(contact)) continue;
     for (int i = 0; i < contact.manifold.pointCount; ++i) {
       if (!touching(contact, i, impl_->def.linearSlop)) continue;
       ContactInfo info;
@@ -556,6 +559,7 @@ std::vector<ContactInfo> World::contacts() const {
 size_t World::contactCount() const {
   size_t count = 0;
   for (const Contact& contact : impl_->contacts) {
+    if (WorldImpl::isDead(contact)) continue;
     for (int i = 0; i < contact.manifold.pointCount; ++i) {
       count += touching(contact, i, impl_->def.linearSlop) ? 1 : 0;
     }

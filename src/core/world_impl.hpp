@@ -20,6 +20,7 @@
 
 #include <impulse2d/world.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <unordered_map>
@@ -219,6 +220,16 @@ struct WorldImpl {
 
   std::vector<Contact> contacts;  // solved in this order
   ContactKeySet contactKeys;      // the keys of `contacts`: a pair is found once
+  // Contacts of destroyed bodies (bodyA = bodyB = -1), still in `contacts` until the next step
+  // or edit drops them: one compaction for a batch of deletions instead of one each (v3_rain
+  // destroys dozens of bodies at a time among ten thousand contacts).
+  size_t deadContacts = 0;
+  static bool isDead(const Contact& c) { return c.bodyA < 0; }
+  void dropDeadContacts() {
+    if (deadContacts == 0) return;
+    contacts.erase(std::remove_if(contacts.begin(), contacts.end(), isDead), contacts.end());
+    deadContacts = 0;
+  }
 
   // The one-pass solvers (baumgarte, ngs) work on these, not on `bodies`.
   SolverBodies solverBodies;
@@ -283,11 +294,12 @@ struct WorldImpl {
   /// Removes the contacts of the body in `bodySlot` and wakes the bodies they touched, in one
   /// pass over the contacts (v3_rain destroys a column of ragdolls every eighth step).
   void destroyContactsOf(int bodySlot);
-  /// Removes the contacts `pred` selects, keeping the others in order.
+  /// Removes the contacts `pred` selects, keeping the others in order (and dead ones with them).
   template <class Pred>
   void eraseContactsIf(Pred pred) {
     size_t write = 0;
     for (size_t read = 0; read < contacts.size(); ++read) {
+      if (isDead(contacts[read])) continue;
       if (pred(contacts[read])) {
         contactKeys.erase(contacts[read].key);
         continue;
@@ -296,6 +308,7 @@ struct WorldImpl {
       ++write;
     }
     contacts.resize(write);
+    deadContacts = 0;
   }
   bool shouldCollide(int bodyA, int bodyB) const;
   void wakeBody(Body& body);

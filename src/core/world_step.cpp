@@ -17,6 +17,7 @@ void World::step() {
   if (w.profiling) w.profile = StepProfile();
   const StageClock wholeStep(w.stage(&StepProfile::total));
   w.stepWorkers.setThreads(w.def.threads);
+  w.dropDeadContacts();        // of the bodies destroyed since the last step
   w.stepWorkers.session([&] {  // the step's threads, for each stage that has parallel blocks
     w.updateBroadPhase();      // 1. refit the fat boxes of bodies that left them
     w.findNewContacts();       // 2. newly overlapping pairs become arbiters
