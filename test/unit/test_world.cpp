@@ -59,6 +59,56 @@ TEST(World, BodiesInReusedSlotsMoveAsTheirTypeSays) {
   EXPECT_LT(world.body(d).xf.p.y(), y);
 }
 
+TEST(World, ContactsOfDestroyedBodiesAreGoneAtOnceAndStayGoneWhenTheirSlotIsTaken) {
+  // Destroying a body leaves its contacts to be dropped at the next step: until then no query
+  // may see them, an edit in between may not bring them back, and a body born in the freed
+  // slot must not inherit them.
+  World world;
+  const BodyId ground = addBox(world, "ground", Vec2(0, -0.5), 20, 1, BodyType::Static);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 6; ++i) {
+    boxes.push_back(
+        addBox(world, "b" + std::to_string(i), Vec2(2.0 * i - 5.0, 0.5), 1, 1, BodyType::Dynamic));
+  }
+  const BodyId top = addBox(world, "top", Vec2(-5.0, 1.5), 1, 1, BodyType::Dynamic);
+  for (int i = 0; i < 30; ++i) world.step();
+  auto touches = [&](BodyId id) {
+    for (const ContactInfo& c : world.contacts()) {
+      if (c.bodyA == id || c.bodyB == id) return true;
+    }
+    return false;
+  };
+  ASSERT_TRUE(touches(boxes[0]));
+  ASSERT_TRUE(touches(top));
+  const size_t before = world.contactCount();
+  ASSERT_TRUE(world.destroyBody(boxes[0]));  // under `top`: two contacts go
+  ASSERT_TRUE(world.destroyBody(boxes[3]));
+  EXPECT_FALSE(touches(boxes[0]));
+  EXPECT_FALSE(touches(boxes[3]));
+  EXPECT_EQ(world.contactCount(), world.contacts().size());
+  EXPECT_LT(world.contactCount(), before);
+  EXPECT_TRUE(world.body(top).awake) << "what rested on a destroyed body wakes";
+  // An edit that erases contacts in between (a joint between touching bodies that may not
+  // collide), then a body in a freed slot before any step.
+  JointDef hinge;
+  hinge.bodyA = ground;
+  hinge.bodyB = boxes[1];
+  hinge.anchor = Vec2(-3.0, 0.0);
+  ASSERT_TRUE(world.createJoint(hinge).valid());
+  EXPECT_FALSE(touches(boxes[0]));
+  const BodyId reborn = addBox(world, "reborn", Vec2(8.0, 5.0), 1, 1, BodyType::Dynamic);
+  ASSERT_TRUE(reborn.index == boxes[0].index || reborn.index == boxes[3].index);
+  EXPECT_FALSE(touches(reborn));
+  world.step();
+  EXPECT_FALSE(touches(reborn)) << "it falls from 5 m: nothing of the old body's contacts";
+  for (const ContactInfo& c : world.contacts()) {
+    EXPECT_TRUE(world.isValid(c.bodyA) && world.isValid(c.bodyB));
+  }
+  for (int i = 0; i < 120; ++i) world.step();
+  EXPECT_TRUE(touches(reborn)) << "it lands and touches the ground";
+  EXPECT_LT(world.body(top).xf.p.y(), 0.6) << "top fell where boxes[0] was";
+}
+
 TEST(World, RefusesDuplicateNamesAndBadBodiesWithoutChangingAnything) {
   World world;
   addBox(world, "a", Vec2(0, 0), 1, 1, BodyType::Dynamic);
