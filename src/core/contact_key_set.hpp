@@ -58,6 +58,11 @@ class ContactKeySet {
     --size_;
   }
 
+  /// A hint: the slot where a lookup of `key` starts is about to be read.
+  void prefetch(uint64_t key) const {
+    if (!slots_.empty()) __builtin_prefetch(&slots_[home(key)]);
+  }
+
   size_t size() const { return size_; }
 
   void clear() {

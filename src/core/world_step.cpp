@@ -125,19 +125,26 @@ void WorldImpl::findNewContacts() {
       });
     }
     // Then the keys, after the queries: the tree's nodes and the key table stay apart in cache.
+    // Each lookup misses the cache (a key's slot is anywhere in the table), so all keys are
+    // made first and each slot asked for eight lookups ahead.
     size_t kept = 0;
-    for (NewPair pair : out) {
+    for (NewPair& pair : out) {
       pair.slotA = proxySlot(tree.userData(pair.proxyA));
       pair.shapeA = proxyShape(tree.userData(pair.proxyA));
       pair.slotB = proxySlot(tree.userData(pair.proxyB));
       pair.shapeB = proxyShape(tree.userData(pair.proxyB));
-      if (pair.slotA == pair.slotB) continue;
       if (pair.slotA > pair.slotB) {
         std::swap(pair.slotA, pair.slotB);
         std::swap(pair.shapeA, pair.shapeB);
         std::swap(pair.proxyA, pair.proxyB);
       }
       pair.key = contactKey(pair.slotA, pair.shapeA, pair.slotB, pair.shapeB);
+    }
+    constexpr size_t kKeysAhead = 8;
+    for (size_t k = 0; k < out.size(); ++k) {
+      if (k + kKeysAhead < out.size()) contactKeys.prefetch(out[k + kKeysAhead].key);
+      const NewPair& pair = out[k];
+      if (pair.slotA == pair.slotB) continue;
       if (contactKeys.contains(pair.key) || !shouldCollide(pair.slotA, pair.slotB)) continue;
       out[kept++] = pair;
     }
