@@ -175,6 +175,14 @@ inline void applyJointImpulse(BodyVelocity& a, BodyVelocity& b, const Vec2& p, d
                               double angularB) {
   applyImpulse(a, b, p.x(), p.y(), angularA, angularB);  // solver_body.hpp
 }
+/// How fast the bodies move apart along a row through the joint: the unit `axis` with lever arms
+/// armA = cross(rA, axis) and armB = cross(rB, axis) (a distance joint's rod, a prismatic one's
+/// rail).
+inline double rateAlong(const Vec2& axis, double armA, double armB, const BodyVelocity& a,
+                        const BodyVelocity& b) {
+  return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
+         armA * a.angularVelocity;
+}
 /// The same as a position correction (NGS): moves and turns both bodies.
 void applyJointCorrection(SolverBody& a, SolverBody& b, const Vec2& p, double angularA,
                           double angularB);

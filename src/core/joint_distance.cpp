@@ -47,12 +47,6 @@ double inverseMassOf(const Rod& r, const SolverBody& a, const SolverBody& b) {
   return a.invMass + b.invMass + a.invInertia * r.armA * r.armA + b.invInertia * r.armB * r.armB;
 }
 
-double lengthRate(const Vec2& axis, double armA, double armB, const BodyVelocity& a,
-                  const BodyVelocity& b) {
-  return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
-         armA * a.angularVelocity;
-}
-
 void applyAxial(const Joint& j, BodyVelocity& a, BodyVelocity& b, double impulse) {
   applyJointImpulse(a, b, impulse * j.axis, j.axisArmA * impulse, j.axisArmB * impulse);
 }
@@ -95,7 +89,7 @@ void warmStartDistance(Joint& joint, BodyVelocity& a, BodyVelocity& b) {
 }
 
 void solveDistanceVelocity(Joint& joint, BodyVelocity& a, BodyVelocity& b, double /*dt*/) {
-  auto rate = [&] { return lengthRate(joint.axis, joint.axisArmA, joint.axisArmB, a, b); };
+  auto rate = [&] { return rateAlong(joint.axis, joint.axisArmA, joint.axisArmB, a, b); };
   if (!isSpring(joint)) {
     const Feedback& fb = joint.feedback;
     const double impulse = fb.massScale * joint.axialMass * (joint.lengthBias - rate()) -
@@ -152,7 +146,7 @@ JointState measureDistance(const Joint& joint, const SolverBody& a, const Solver
   const Rod rod = rodOf(joint, a, b);
   JointState state;
   state.position = rod.length;
-  state.velocity = lengthRate(rod.axis, rod.armA, rod.armB, a, b);
+  state.velocity = rateAlong(rod.axis, rod.armA, rod.armB, a, b);
   return state;
 }
 

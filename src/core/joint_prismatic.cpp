@@ -35,14 +35,8 @@ void applyRows(const Joint& j, BodyVelocity& a, BodyVelocity& b, double perpendi
                     j.normalArmB * perpendicular + angular + j.axisArmB * axial);
 }
 
-double axialRate(const Vec2& axis, double armA, double armB, const BodyVelocity& a,
-                 const BodyVelocity& b) {
-  return axis.dot(b.linearVelocity - a.linearVelocity) + armB * b.angularVelocity -
-         armA * a.angularVelocity;
-}
-
 double axialRate(const Joint& j, const BodyVelocity& a, const BodyVelocity& b) {
-  return axialRate(j.axis, j.axisArmA, j.axisArmB, a, b);
+  return rateAlong(j.axis, j.axisArmA, j.axisArmB, a, b);
 }
 
 // The rail at the bodies' current positions: the part of prepare that the position pass repeats
@@ -194,7 +188,7 @@ JointState measurePrismatic(const Joint& joint, const SolverBody& a, const Solve
   const Rail rail = railOf(joint, a, b);
   JointState state;
   state.position = rail.axis.dot(rail.d);
-  state.velocity = axialRate(rail.axis, rail.axisArmA, rail.axisArmB, a, b);
+  state.velocity = rateAlong(rail.axis, rail.axisArmA, rail.axisArmB, a, b);
   return state;
 }
 

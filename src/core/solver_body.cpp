@@ -98,7 +98,7 @@ void SolverBodies::holdKinematicVelocities() {
 void SolverBodies::storeMotion(std::vector<Body>& bodies) const {
   for (int e = 0; e < movingCount_; ++e) {
     const SolverBody& entry = entries_[e];
-    const auto [first, last] = membersOf(e);
+    const auto [first, last] = clusterRows_.ofRow(e);
     for (int k = first; k < last; ++k) {  // a cluster: its members, rigidly
       const MemberStart& m = clusterRows_.member(k);
       Body& body = bodies[m.slot];

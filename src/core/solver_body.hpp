@@ -132,10 +132,7 @@ class SolverBodies {
   SolverBody view(int slot);
   /// Writes a view back: the velocity of a dynamic entry, and its pose when `pose`.
   void store(int slot, const SolverBody& view, bool pose);
-  /// The members of the cluster whose entry is `entry` ([first, last) of member()), or an empty
-  /// range for a body alone.
-  std::pair<int, int> membersOf(int entry) const { return clusterRows_.ofRow(entry); }
-  const MemberStart& member(int index) const { return clusterRows_.member(index); }
+  /// The welded clusters' members, by entry (ClusterRows::ofRow, member).
   const ClusterRows& clusterRows() const { return clusterRows_; }
 
   /// Gives the kinematic entries their prescribed velocities back: impulses cannot change them

@@ -203,7 +203,7 @@ void SubstepBodies::finishMember(std::vector<Body>& bodies, int entry, const Mem
 
 void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const {
   for (int e = begin; e < std::min(end, movingCount_); ++e) {
-    const auto [first, last] = membersOf(e);
+    const auto [first, last] = clusterRows_.ofRow(e);
     if (first < last) {
       for (int k = first; k < last; ++k) finishMember(bodies, e, clusterRows_.member(k));
       continue;

@@ -131,10 +131,7 @@ class SubstepBodies {
   /// `pose` (position passes).
   void store(int slot, const SolverBody& view, bool pose);
 
-  /// The members of the cluster whose row is `entry` ([begin, end) of members()), or an empty
-  /// range for a body alone.
-  std::pair<int, int> membersOf(int entry) const { return clusterRows_.ofRow(entry); }
-  const MemberStart& member(int index) const { return clusterRows_.member(index); }
+  /// The welded clusters' members, by entry (ClusterRows::ofRow, member).
   const ClusterRows& clusterRows() const { return clusterRows_; }
 
   /// Writes the moved poses and (dynamic) velocities, within the limits, of the entries [begin,
