@@ -204,7 +204,8 @@ Aabb computeAabb(const Shape& shape, const Transform& xf) {
   }
   // Called for every moving shape on every step, and twice more for each fast one. The box of
   // the turned vertices is found first and moved by p once: rounding is monotonic, so
-  // max_i (p + r_i) = p + max_i r_i bit for bit, and the box is xf.apply's to the last bit.
+  // max_i (p + r_i) = p + max_i r_i bit for bit, and the box is xf.apply's to the last bit (a
+  // zero's sign aside, which no comparison sees).
   const Polygon& poly = shape.polygon;
 #if defined(__SSE2__)
   // A vertex [x y] a register: [c s] x + [-s c] y = [c x - s y, s x + c y], xf.q.apply's own

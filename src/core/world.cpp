@@ -97,7 +97,7 @@ void WorldImpl::updateProxies(int slot, bool forced) {
 
 void WorldImpl::destroyContactsOf(int bodySlot) {
   for (Contact& c : contacts) {
-    if (c.bodyA != bodySlot && c.bodyB != bodySlot) continue;  // dead ones have -1: never
+    if (c.bodyA != bodySlot && c.bodyB != bodySlot) continue;  // a dead one's bodies are -1
     wakeBody(bodies.items[c.bodyA == bodySlot ? c.bodyB : c.bodyA]);
     contactKeys.erase(c.key);
     c.bodyA = c.bodyB = -1;

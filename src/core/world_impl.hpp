@@ -291,8 +291,9 @@ struct WorldImpl {
   }
   /// Refits the fat boxes of a body whose shapes left them; forced = after a teleport.
   void updateProxies(int slot, bool forced);
-  /// Removes the contacts of the body in `bodySlot` and wakes the bodies they touched, in one
-  /// pass over the contacts (v3_rain destroys a column of ragdolls every eighth step).
+  /// Marks the contacts of the body in `bodySlot` dead (the next step drops them, see
+  /// deadContacts) and wakes the bodies they touched (v3_rain destroys a column of ragdolls
+  /// every eighth step).
   void destroyContactsOf(int bodySlot);
   /// Removes the contacts `pred` selects, keeping the others in order (and dead ones with them).
   template <class Pred>
