@@ -138,11 +138,6 @@ void JointLanes::fromJoint(const Joint& joint, JointBundle& j, int lane) {
 }
 
 void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies) {
-  // view(slot).angle, without the rest of the view.
-  auto angleOf = [&](int slot) {
-    const SubstepBodies::ViewStart start = bodies.viewStart(slot);
-    return start.moves ? start.angle0 + bodies.states()[bodies.entryOf(slot)].turned : start.angle0;
-  };
   for (const JointBundle& j : bundles_) {
     for (int lane = 0; lane < j.laneCount; ++lane) {
       Joint& joint = joints[static_cast<size_t>(j.joint[lane])];
@@ -150,7 +145,8 @@ void JointLanes::writeBack(std::vector<Joint>& joints, const SubstepBodies& bodi
       // The rest of what prepareRevolute set in the last relax pass (rigid feedback).
       joint.feedback = Feedback();
       joint.axialMass = j.axialMass[lane];
-      joint.angle = angleOf(joint.bodyB) - angleOf(joint.bodyA) - joint.referenceAngle;
+      joint.angle =
+          bodies.viewAngle(joint.bodyB) - bodies.viewAngle(joint.bodyA) - joint.referenceAngle;
       joint.pairBias.x() = joint.pairBias.y() = 0.0;
       if (joint.params.enableLimit) {
         joint.lowerBias = j.lowerBias[lane];

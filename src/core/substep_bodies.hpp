@@ -125,6 +125,11 @@ class SubstepBodies {
     bool moves;
   };
   ViewStart viewStart(int slot) const;
+  /// view(slot).angle alone.
+  double viewAngle(int slot) const {
+    const ViewStart start = viewStart(slot);
+    return start.moves ? start.angle0 + states_[entryOfSlot_[slot]].turned : start.angle0;
+  }
   /// Writes back what a joint's velocity rows changed, to a dynamic entry.
   void store(int slot, const BodyVelocity& view);
   /// Writes back what a joint changed: velocities of a dynamic entry, and its pose when

@@ -121,12 +121,10 @@ template <class JointOp>
 void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int lane, int worker,
                               const JointOp& jointOp) {
   const JointBundle& j = jointLanes.bundle(bundle);
-  if (j.anyLimit) {  // the limits' position rows stay scalar: every lane of the bundle
-    if (lane >= 0) {
-      onJoint<JointAccess::WritePoses>(j.joint[lane % kJointLanes], worker, jointOp);
-      return;
-    }
-    for (int i = 0; i < j.laneCount; ++i)
+  if (j.anyLimit) {  // the limits' position rows stay scalar: the lane, or every lane
+    const int first = lane >= 0 ? lane % kJointLanes : 0;
+    const int last = lane >= 0 ? first + 1 : j.laneCount;
+    for (int i = first; i < last; ++i)
       onJoint<JointAccess::WritePoses>(j.joint[i], worker, jointOp);
     return;
   }
