@@ -9,7 +9,8 @@
 // scalar path, on every instruction set. A lane whose warm start would break the motion limits
 // (warmStartJoint's rescaling, rare) is left untouched and handed back to the scalar path.
 //
-//   per step:       fill (the bodies' rows, start poses, anchors, kept impulses)
+//   per step:       layOut (which lane each joint takes), then fill (the bodies' rows, start
+//                   poses, anchors, kept impulses)
 //   per sub-step:   [prepare +] warm start, solve, prepare + relax (solve at the new poses)
 //   after them:     writeBack (the impulses, and the rows as the last relax prepared them),
 //                   then the NGS position passes (joints without limits; limits stay scalar)
@@ -98,10 +99,13 @@ class JointLanes {
   /// Whether a joint takes a lane: revolute.
   static bool fits(const Joint& joint);
   /// Lays the fitting joints of each colour ([colorStart[c], colorStart[c + 1]) of `joints`, the
-  /// overflow (colour `colors`) last) into bundles and fills them for sub-steps of h; the others
-  /// of each colour are listed in scalarJoints. On one thread.
-  void fill(std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors,
-            const SubstepBodies& bodies, double h);
+  /// overflow (colour `colors`) last) into bundles, a lane each; the others of each colour are
+  /// listed in scalarJoints. On one thread; fill() then fills the lanes.
+  void layOut(const std::vector<Joint>& joints, const std::vector<int>& colorStart, int colors);
+  /// Fills the lanes of bundles [begin, end) for sub-steps of h: each touches only its own lanes
+  /// and joints, so blocks of bundles may be filled on several threads at once.
+  void fill(int begin, int end, std::vector<Joint>& joints, const SubstepBodies& bodies, double h);
+  int bundleCount() const { return static_cast<int>(bundles_.size()); }
   /// Colour c's bundles are [bundleStart(c), bundleStart(c + 1)).
   int bundleStart(int color) const { return bundleStart_[color]; }
   /// Colour c's joints that take no lane (indices in the solver's joints).
@@ -114,14 +118,17 @@ class JointLanes {
   /// Copies a lane's rows and impulse into its joint (for the scalar path), and back.
   static void toJoint(const JointBundle& bundle, int lane, Joint& joint);
   static void fromJoint(const Joint& joint, JointBundle& bundle, int lane);
-  /// After the sub-steps: each lane's impulses and rows into its joint, as the scalar path's
-  /// last relax pass left them.
-  void writeBack(std::vector<Joint>& joints, const SubstepBodies& bodies);
+  /// After the sub-steps: the impulses and rows of the lanes of bundles [begin, end) into their
+  /// joints, as the scalar path's last relax pass left them (blocks on several threads at once).
+  void writeBack(int begin, int end, std::vector<Joint>& joints, const SubstepBodies& bodies) const;
 
  private:
-  /// Fills the next lane (opening a bundle when the last is full) with solver joint k; returns
-  /// its place (bundle * kJointLanes + lane).
-  int addLane(Joint& joint, int k, const SubstepBodies& bodies, double h, int& lane);
+  /// Asks for the rows of the bodies of the lane a few after (k, lane), among bundles < end.
+  void prefetchBodiesAhead(int k, int lane, int end, const std::vector<Joint>& joints,
+                           const SubstepBodies& bodies, bool poses) const;
+  /// Fills a lane with its joint.
+  static void fillLane(Joint& joint, JointBundle& j, int lane, const SubstepBodies& bodies,
+                       double h);
 
   std::vector<JointBundle> bundles_;
   std::vector<int> bundleStart_;                // by colour, one past the last

@@ -40,8 +40,10 @@ constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 constexpr int kBundlesPerBlock = 4;
 constexpr int kJointsPerBlock = 32;
 constexpr int kJointBundlesPerBlock = 4;
-// Joints copied to and from their colours' order per block.
+// Joints copied to and from their colours' order per block, and the joint lanes' bundles filled
+// and written back per block (the same 256 joints).
 constexpr int kJointsPerCopyBlock = 256;
+constexpr int kJointBundlesPerCopyBlock = kJointsPerCopyBlock / kJointLanes;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
@@ -243,8 +245,17 @@ void WorldImpl::solveSubsteps(double dt) {
   fillBundles(dt, substeps, soft);
   const bool preparedByRelax = !soft && def.warmStarting;
   jointLanesFilled = preparedByRelax;  // the lanes' rows are rigid and warm started
+  // The joint lanes' bundles [begin, end) in blocks on the threads: each lane is its own joint's.
+  const auto overLaneBundles = [&](const auto& op) {
+    const int count = jointLanes.bundleCount();
+    stepWorkers.stage(blocksOf(count, kJointBundlesPerCopyBlock), [&](int block, int) {
+      const int begin = block * kJointBundlesPerCopyBlock;
+      op(begin, std::min(count, begin + kJointBundlesPerCopyBlock));
+    });
+  };
   if (jointLanesFilled) {
-    jointLanes.fill(solverJoints, jointStart, stepColors.colorCount(), sb, h);
+    jointLanes.layOut(solverJoints, jointStart, stepColors.colorCount());
+    overLaneBundles([&](int begin, int end) { jointLanes.fill(begin, end, solverJoints, sb, h); });
     jointLaneArgs.bundles = jointLanes.bundles();
     jointLaneArgs.h = h;
     jointLaneArgs.states = reinterpret_cast<double*>(sb.states());
@@ -319,7 +330,8 @@ void WorldImpl::solveSubsteps(double dt) {
     laps.lap(&StepProfile::relax);
   }
   if (jointLanesFilled) {  // the joints as the last relax pass left them
-    jointLanes.writeBack(solverJoints, sb);
+    overLaneBundles(
+        [&](int begin, int end) { jointLanes.writeBack(begin, end, solverJoints, sb); });
     laps.lap(&StepProfile::relax);
   }
   pass.relax = false;
