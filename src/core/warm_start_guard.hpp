@@ -34,6 +34,7 @@ class WarmStartGuard {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();
+    parent_.clear();
     ends_.clear();
     guardedContacts_.clear();
     auto local = [&](int slot) {
@@ -49,13 +50,13 @@ class WarmStartGuard {
         b.invMass = v.invMass;
         b.invInertia = v.invInertia;
         b.center = v.center;
-        b.parent = index;
         bodies_.push_back(b);
+        parent_.push_back(index);
       }
       return index;
     };
     auto unite = [&](int a, int b) {
-      if (a >= 0 && b >= 0) bodies_[static_cast<size_t>(find(a))].parent = find(b);
+      if (a >= 0 && b >= 0) parent_[static_cast<size_t>(find(a))] = find(b);
     };
     for (Joint* joint : joints) {
       const int a = local(joint->bodyA), b = local(joint->bodyB);
@@ -75,21 +76,27 @@ class WarmStartGuard {
       unite(a, b);
       guardedContacts_.push_back({static_cast<int>(i), a, b});
     }
+    // Each local's group, once: the sums below go in local order whichever member is the root.
     const size_t n = bodies_.size();
+    root_.resize(n);
+    for (size_t i = 0; i < n; ++i) root_[i] = find(static_cast<int>(i));
     before_.assign(n, 0.0);
     mass_.assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
-      const size_t root = static_cast<size_t>(find(static_cast<int>(i)));
+      const size_t root = static_cast<size_t>(root_[i]);
       before_[root] += energy(bodies_[i], bodies_[i].v, bodies_[i].w);
       mass_[root] += bodies_[i].invMass > 0.0 ? 1.0 / bodies_[i].invMass : 0.0;
     }
     // The trial: the joints' warm start, then the contacts', as the solvers apply them.
+    // A warm start only adds impulses: what it gives one body does not depend on the other, so
+    // an end with no trial copy (a body the step does not move) is a stand-in whose change is
+    // dropped. The copies carry what the rows read (v3_joint_grid spent a tenth of its step here
+    // while each end was read as a whole view of its body).
     for (size_t k = 0; k < joints.size(); ++k) {
       Joint& joint = *joints[k];
-      SolverBody a = view(joint.bodyA), b = view(joint.bodyB);
       const auto [la, lb] = ends_[k];
-      if (la >= 0) a.linearVelocity = bodies_[la].trialV, a.angularVelocity = bodies_[la].trialW;
-      if (lb >= 0) b.linearVelocity = bodies_[lb].trialV, b.angularVelocity = bodies_[lb].trialW;
+      BodyVelocity a = la >= 0 ? trial(bodies_[la]) : BodyVelocity();
+      BodyVelocity b = lb >= 0 ? trial(bodies_[lb]) : BodyVelocity();
       applyJointWarmStart(joint, a, b);  // reads the joint only
       if (la >= 0) bodies_[la].trialV = a.linearVelocity, bodies_[la].trialW = a.angularVelocity;
       if (lb >= 0) bodies_[lb].trialV = b.linearVelocity, bodies_[lb].trialW = b.angularVelocity;
@@ -106,14 +113,14 @@ class WarmStartGuard {
     }
     after_.assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
-      after_[static_cast<size_t>(find(static_cast<int>(i)))] +=
+      after_[static_cast<size_t>(root_[i])] +=
           energy(bodies_[i], bodies_[i].trialV, bodies_[i].trialW);
     }
     // Where a group's energy would more than double, all its impulses shrink: the energy a warm
     // start adds grows with their square.
     auto scaleOf = [&](int end) {
       if (end < 0) return 1.0;
-      const size_t root = static_cast<size_t>(find(end));
+      const size_t root = static_cast<size_t>(root_[static_cast<size_t>(end)]);
       const double allowed =
           2.0 * before_[root] + 0.5 * mass_[root] * (4.0 * gravityStep * gravityStep + 0.01);
       if (!(after_[root] > allowed)) return 1.0;
@@ -138,11 +145,18 @@ class WarmStartGuard {
   struct Local {
     Vec2 v = Vec2::Zero(), trialV = Vec2::Zero(), center = Vec2::Zero();
     double w = 0.0, trialW = 0.0, invMass = 0.0, invInertia = 0.0;
-    int parent = 0;
   };
   struct GuardedContact {
     int contact, a, b;  // its index, its bodies' locals (-1: not moving)
   };
+  static BodyVelocity trial(const Local& b) {
+    BodyVelocity v;
+    v.linearVelocity = b.trialV;
+    v.angularVelocity = b.trialW;
+    v.invMass = b.invMass;
+    v.invInertia = b.invInertia;
+    return v;
+  }
   static double energy(const Local& b, const Vec2& v, double w) {
     return (b.invMass > 0.0 ? 0.5 * v.squaredNorm() / b.invMass : 0.0) +
            (b.invInertia > 0.0 ? 0.5 * w * w / b.invInertia : 0.0);
@@ -151,17 +165,19 @@ class WarmStartGuard {
     b.trialV += b.invMass * p;
     b.trialW += b.invInertia * cross(Vec2(point - b.center), p);
   }
+  // The union-find's parents apart from the locals: a find walks 4 bytes a step, not a local.
   int find(int i) {
-    while (bodies_[static_cast<size_t>(i)].parent != i) {
-      Local& b = bodies_[static_cast<size_t>(i)];
-      b.parent = bodies_[static_cast<size_t>(b.parent)].parent;
-      i = b.parent;
+    while (parent_[static_cast<size_t>(i)] != i) {
+      int& up = parent_[static_cast<size_t>(i)];
+      up = parent_[static_cast<size_t>(up)];
+      i = up;
     }
     return i;
   }
 
   std::vector<int> localOfRow_;
   std::vector<Local> bodies_;
+  std::vector<int> parent_, root_;         // by local: the union-find's, and each one's group
   std::vector<std::pair<int, int>> ends_;  // by joint: its bodies' locals
   std::vector<GuardedContact> guardedContacts_;
   std::vector<double> before_, after_, mass_;
