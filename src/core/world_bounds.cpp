@@ -136,10 +136,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
     group.assign(1, first);
     mark[first] = 2;
     bool held = false;
-    double momentumDown = 0.0;
     for (size_t k = 0; k < group.size(); ++k) {
-      const Body& body = bodies.items[group[k]];
-      momentumDown += body.mass * floor.down.dot(body.linearVelocity);
       for (const int j : jointsOfBody[group[k]]) {
         const auto [bodyA, bodyB] = jointBodies[j];
         const int other = bodyA == group[k] ? bodyB : bodyA;
@@ -150,12 +147,21 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
         }
       }
     }
+    // Only a group that nothing holds reads its bodies (a grid hanging from a few pins is all
+    // candidates, every step).
+    double momentumDown = 0.0;
+    if (!held) {
+      for (const int slot : group) {
+        const Body& body = bodies.items[slot];
+        momentumDown += body.mass * floor.down.dot(body.linearVelocity);
+      }
+    }
+    const bool lost = !held && momentumDown >= 0.0;
     for (const int slot : group) {
-      const Body& body = bodies.items[slot];
-      const bool lost = !held && momentumDown >= 0.0;
       const bool reported = bookkeeping[slot].lost;
       bookkeeping[slot].lost = lost;
       if (!lost || (reported && !def.removeLostBodies)) continue;
+      const Body& body = bodies.items[slot];
       const double depth = floor.top(body) - floor.deepest;
       std::string reason = "lost for good: it fell " + metres(depth) +
                            " below every static body, more than their height of " +
