@@ -128,22 +128,23 @@ void WorldImpl::solveContinuous() {
   impacts.assign(fastBodies.size(), 1.0);
   const int count = static_cast<int>(fastBodies.size());
   scratch.queryStacks.resize(static_cast<size_t>(stepWorkers.threads()));
-  stepWorkers.stage((count + kFastBodiesPerBlock - 1) / kFastBodiesPerBlock,
-                    [&](int block, int worker) {
-                      const int end = std::min(count, (block + 1) * kFastBodiesPerBlock);
-                      for (int k = block * kFastBodiesPerBlock; k < end; ++k) {
-                        const FastBody& fast = fastBodies[static_cast<size_t>(k)];
-                        if (bodies.items[fast.slot].bullet) continue;
-                        impacts[static_cast<size_t>(k)] =
-                            firstImpact(fast, scratch.queryStacks[static_cast<size_t>(worker)]);
-                      }
-                    });
+  stepWorkers.stage(
+      (count + kFastBodiesPerBlock - 1) / kFastBodiesPerBlock, [&](int block, int worker) {
+        const int end = std::min(count, (block + 1) * kFastBodiesPerBlock);
+        for (int k = block * kFastBodiesPerBlock; k < end; ++k) {
+          const FastBody& fast = fastBodies[static_cast<size_t>(k)];
+          if (bodies.items[fast.slot].bullet) continue;
+          impacts[static_cast<size_t>(k)] =
+              firstImpact(fast, scratch.queryStacks[static_cast<size_t>(worker)].value);
+        }
+      });
   // In order: a bullet's impact, which sees the bodies before it where they were put back, and
   // each body put back at its first impact.
   for (size_t k = 0; k < fastBodies.size(); ++k) {
     const FastBody& fast = fastBodies[k];
     Body& body = bodies.items[fast.slot];
-    const double impact = body.bullet ? firstImpact(fast, scratch.queryStacks[0]) : impacts[k];
+    const double impact =
+        body.bullet ? firstImpact(fast, scratch.queryStacks[0].value) : impacts[k];
     if (fast.cluster >= 0) {
       double& first = fastClusters[fast.cluster].impact;
       first = std::min(first, impact);

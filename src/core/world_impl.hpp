@@ -130,14 +130,22 @@ struct NewPair {
   int slotB, shapeB, proxyB;
 };
 
+/// A value on a cache line of its own: what threads write at once, each its own (a vector's
+/// header grows with every push), must not share a line, or each write takes the line from the
+/// other threads (v3_spinner's pair search ran as long on two threads as on one).
+template <class T>
+struct alignas(64) OwnLine {
+  T value{};
+};
+
 /// The buffers the step's stages reuse, so that a warm step allocates nothing: scratch, each
 /// stage's own, meaningless between steps.
 struct StepScratch {
   // Broad phase (world_step.cpp): by block, the proxies that left their fat boxes and the new
   // pairs their queries found; by worker, a tree query's stack; all new pairs, merged.
-  std::vector<std::vector<std::pair<int, Aabb>>> refits;
-  std::vector<std::vector<NewPair>> newPairs;
-  std::vector<std::vector<int>> queryStacks;
+  std::vector<OwnLine<std::vector<std::pair<int, Aabb>>>> refits;
+  std::vector<OwnLine<std::vector<NewPair>>> newPairs;
+  std::vector<OwnLine<std::vector<int>>> queryStacks;
   std::vector<NewPair> freshPairs;
   // Sub-steps' colouring (world_substeps.cpp): the active joints' slots, colour after colour.
   std::vector<int> jointOrder;
@@ -148,9 +156,13 @@ struct StepScratch {
   std::vector<Joint*> guardedJoints;
   // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.
   std::vector<std::pair<Vec2, double>> onePassStarts;
-  // Sub-steps' NGS passes (world_substeps.cpp): by worker, its verdicts.
-  std::vector<char> workerJointsOk;
-  std::vector<double> workerWidest, workerDeepest;
+  // Sub-steps' NGS passes (world_substeps.cpp): by worker, its verdicts on the pass: whether
+  // every joint it solved was within the slop, the widest joint error and the deepest overlap.
+  struct PassVerdict {
+    bool jointsOk = true;
+    double widest = 0.0, deepest = 0.0;
+  };
+  std::vector<OwnLine<PassVerdict>> workerVerdicts;
   // Both NGS paths' guard (position_guard.hpp): the moving bodies' rows before the passes.
   std::vector<BodyState> guardedStates;
   std::vector<SolverBody> guardedBodies;
@@ -355,7 +367,7 @@ struct WorldImpl {
   void overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass);
   /// A position pass over a joint bundle (or one lane of it, for lane >= 0): in the kernels, or
   /// jointOp on each lane's joint where the bundle has limits. The errors go to the worker's
-  /// scratch.workerWidest and workerJointsOk, as correctSubstepPositions' jointOp does.
+  /// scratch.workerVerdicts, as correctSubstepPositions' jointOp does.
   template <class JointOp>
   void positionLanes(const JointLaneArgs& args, int bundle, int lane, int worker,
                      const JointOp& jointOp);

@@ -67,7 +67,7 @@ void WorldImpl::updateBroadPhase() {
   const int blocks = (movables + kBodiesPerBlock - 1) / kBodiesPerBlock;
   scratch.refits.resize(static_cast<size_t>(blocks));
   stepWorkers.stage(blocks, [&](int block, int) {
-    std::vector<std::pair<int, Aabb>>& out = scratch.refits[block];
+    std::vector<std::pair<int, Aabb>>& out = scratch.refits[block].value;
     out.clear();
     const int end = std::min(movables, (block + 1) * kBodiesPerBlock);
     for (int k = block * kBodiesPerBlock; k < end; ++k) {
@@ -83,12 +83,12 @@ void WorldImpl::updateBroadPhase() {
     }
   });
   size_t moved = 0;
-  for (const std::vector<std::pair<int, Aabb>>& block : scratch.refits) moved += block.size();
+  for (const auto& block : scratch.refits) moved += block.value.size();
   // Many proxies moved (a smashed wall, a shower of parts): their new boxes in place and the tree
   // built anew, instead of each taken out and put back in turn.
   const bool rebuild = moved >= 64 && 8 * moved >= static_cast<size_t>(tree.proxyCount());
-  for (const std::vector<std::pair<int, Aabb>>& block : scratch.refits) {
-    for (const auto& [proxy, box] : block) {
+  for (const auto& block : scratch.refits) {
+    for (const auto& [proxy, box] : block.value) {
       if (rebuild) {
         tree.setFatAabb(proxy, box.inflated(kAabbMargin));
       } else {
@@ -110,13 +110,13 @@ void WorldImpl::findNewContacts() {
   scratch.newPairs.resize(static_cast<size_t>(blocks));
   scratch.queryStacks.resize(static_cast<size_t>(stepWorkers.threads()));
   stepWorkers.stage(blocks, [&](int block, int worker) {
-    std::vector<NewPair>& out = scratch.newPairs[block];
+    std::vector<NewPair>& out = scratch.newPairs[block].value;
     out.clear();
     const int end = std::min(moved, (block + 1) * kProxiesPerBlock);
     for (int k = block * kProxiesPerBlock; k < end; ++k) {
       const int proxy = movedProxies[k];
       if (!proxyMoved[proxy]) continue;  // destroyed since it moved
-      tree.query(tree.fatAabb(proxy), scratch.queryStacks[worker], [&](int other) {
+      tree.query(tree.fatAabb(proxy), scratch.queryStacks[worker].value, [&](int other) {
         // A pair of two moved proxies is reported by the lower one only; one whose filters refuse
         // it, by neither (world_impl.hpp, ProxyFilter).
         if (other == proxy || (proxyMoved[other] && other < proxy)) return;
@@ -156,8 +156,8 @@ void WorldImpl::findNewContacts() {
   // which pairs exist. The small pairs are sorted, and each contact is made once, in place.
   std::vector<NewPair>& fresh = scratch.freshPairs;
   fresh.clear();
-  for (const std::vector<NewPair>& block : scratch.newPairs) {
-    for (const NewPair& pair : block) {
+  for (const auto& block : scratch.newPairs) {
+    for (const NewPair& pair : block.value) {
       if (contactKeys.insert(pair.key)) fresh.push_back(pair);  // each pair is met once; a guard
     }
   }

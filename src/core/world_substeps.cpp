@@ -130,10 +130,10 @@ void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int lane, i
       onJoint<JointAccess::WritePoses>(j.joint[i], worker, jointOp);
     return;
   }
+  StepScratch::PassVerdict& verdict = scratch.workerVerdicts[static_cast<size_t>(worker)].value;
   bool within = true;
-  positionJointLanes(args, bundle, bundle + 1, lane, def.linearSlop,
-                     &scratch.workerWidest[static_cast<size_t>(worker)], &within);
-  if (!within) scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
+  positionJointLanes(args, bundle, bundle + 1, lane, def.linearSlop, &verdict.widest, &within);
+  if (!within) verdict.jointsOk = false;
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
@@ -475,18 +475,19 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
   const bool guarded = positionGuard.armed();  // position_guard.hpp
   double widest = 0.0;                         // the widest joint error the last pass met
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
-    scratch.workerJointsOk.assign(workers, 1);
-    scratch.workerWidest.assign(workers, 0.0);
-    scratch.workerDeepest.assign(workers, 0.0);
+    scratch.workerVerdicts.assign(workers, {});
+    auto verdictOf = [&](int worker) -> StepScratch::PassVerdict& {
+      return scratch.workerVerdicts[static_cast<size_t>(worker)].value;
+    };
     const auto jointPositions = [&](Joint& j, SolverBody& a, SolverBody& b, int worker) {
       const PositionError error = solveJointPosition(j, a, b);
-      double& w = scratch.workerWidest[static_cast<size_t>(worker)];
-      w = std::max({w, error.linear, error.angular});
-      if (!error.within(def.linearSlop)) scratch.workerJointsOk[static_cast<size_t>(worker)] = 0;
+      StepScratch::PassVerdict& verdict = verdictOf(worker);
+      verdict.widest = std::max({verdict.widest, error.linear, error.angular});
+      if (!error.within(def.linearSlop)) verdict.jointsOk = false;
     };
     const BundleOp contactPositions = [&](const BundlePass& p, int begin, int end, bool oneByOne,
                                           int worker) {
-      double& deepest = scratch.workerDeepest[static_cast<size_t>(worker)];
+      double& deepest = verdictOf(worker).deepest;
       deepest = std::min(deepest, solveBundlePositions(p, begin, end, oneByOne));
     };
     if (guarded) {  // the joints' part of the pass is kept only where it closed them
@@ -503,10 +504,10 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
     bool jointsOk = true;
     double deepest = 0.0;
     widest = 0.0;
-    for (size_t w = 0; w < workers; ++w) {
-      jointsOk = jointsOk && scratch.workerJointsOk[w];
-      widest = std::max(widest, scratch.workerWidest[w]);
-      deepest = std::min(deepest, scratch.workerDeepest[w]);
+    for (const OwnLine<StepScratch::PassVerdict>& verdict : scratch.workerVerdicts) {
+      jointsOk = jointsOk && verdict.value.jointsOk;
+      widest = std::max(widest, verdict.value.widest);
+      deepest = std::min(deepest, verdict.value.deepest);
     }
     if (jointsOk && overlapsResolved(deepest, def.linearSlop)) break;
   }
