@@ -37,7 +37,7 @@ void DynamicTree::destroyProxy(int proxy) {
   --proxyCount_;
 }
 
-void DynamicTree::rebuild() {
+void DynamicTree::rebuild(const ForEachTask& forEach) {
   if (root_ == kNull) return;
   // Every node that is not a leaf goes back to the free list, lowest id first out.
   leaves_.clear();
@@ -51,14 +51,35 @@ void DynamicTree::rebuild() {
       freeNode(id);
     }
   }
-  root_ = buildBranch(leaves_.data(), leaves_.data() + leaves_.size());
+  // The inner nodes' ids, taken from the free list in the order a build one node after the
+  // other takes them (preorder), so that branches built side by side give the same tree.
+  innerIds_.resize(leaves_.size() - 1);
+  for (int& id : innerIds_) id = allocateNode();
+  const Branch all{leaves_.data(), leaves_.data() + leaves_.size(), innerIds_.data()};
+  constexpr size_t kLeavesPerTask = 256;  // smaller branches are not worth a task
+  if (!forEach || leaves_.size() < 4 * kLeavesPerTask) {
+    root_ = buildBranch(all);
+  } else {
+    // The top splits here, then the branches under them as tasks (about 16, a few per thread
+    // of any count that pays), then the top nodes joined bottom up.
+    tasks_.clear();
+    topNodes_.clear();
+    int depth = 0;
+    while (depth < 4 && (leaves_.size() >> (depth + 1)) >= kLeavesPerTask) ++depth;
+    root_ = splitTop(all, depth);
+    forEach(static_cast<int>(tasks_.size()), [this](int k) { buildBranch(tasks_[k]); });
+    for (auto top = topNodes_.rbegin(); top != topNodes_.rend(); ++top) {
+      link((*top)[0], (*top)[1], (*top)[2]);
+    }
+  }
   nodes_[root_].parent = kNull;
 }
 
-// The leaves [first, last) under one new node: split in two halves along the longer side of
-// their centres' box, each half built the same way.
-int DynamicTree::buildBranch(LeafCenter* first, LeafCenter* last) {
-  if (last - first == 1) return first->id;
+// Splits the leaves in two halves along the longer side of their centres' box; returns the
+// first leaf of the second half.
+DynamicTree::LeafCenter* DynamicTree::split(const Branch& branch) {
+  LeafCenter* const first = branch.first;
+  LeafCenter* const last = branch.last;
   double minX = first->x, maxX = first->x, minY = first->y, maxY = first->y;
   for (const LeafCenter* leaf = first + 1; leaf != last; ++leaf) {
     minX = std::min(minX, leaf->x);
@@ -76,9 +97,39 @@ int DynamicTree::buildBranch(LeafCenter* first, LeafCenter* last) {
       return a.y < b.y || (a.y == b.y && a.id < b.id);
     });
   }
-  const int node = allocateNode();
-  const int child1 = buildBranch(first, middle);
-  const int child2 = buildBranch(middle, last);
+  return middle;
+}
+
+// The branch's node over its two halves, each built the same way.
+int DynamicTree::buildBranch(const Branch& branch) {
+  if (branch.last - branch.first == 1) return branch.first->id;
+  LeafCenter* middle = split(branch);
+  const int node = branch.ids[0];
+  const int child1 = buildBranch({branch.first, middle, branch.ids + 1});
+  const int child2 = buildBranch({middle, branch.last, branch.ids + (middle - branch.first)});
+  link(node, child1, child2);
+  return node;
+}
+
+// buildBranch's top `depth` levels: the branches below them are left in tasks_, and the nodes
+// above them in topNodes_ to be linked once those are built. Returns the branch's node.
+int DynamicTree::splitTop(const Branch& branch, int depth) {
+  if (branch.last - branch.first == 1) return branch.first->id;
+  if (depth == 0) {
+    tasks_.push_back(branch);
+    return branch.ids[0];
+  }
+  LeafCenter* middle = split(branch);
+  const int node = branch.ids[0];
+  const size_t top = topNodes_.size();
+  topNodes_.push_back({node, kNull, kNull});
+  topNodes_[top][1] = splitTop({branch.first, middle, branch.ids + 1}, depth - 1);
+  topNodes_[top][2] =
+      splitTop({middle, branch.last, branch.ids + (middle - branch.first)}, depth - 1);
+  return node;
+}
+
+void DynamicTree::link(int node, int child1, int child2) {
   Node& n = nodes_[node];
   n.child1 = child1;
   n.child2 = child2;
@@ -86,7 +137,6 @@ int DynamicTree::buildBranch(LeafCenter* first, LeafCenter* last) {
   n.height = 1 + std::max(nodes_[child1].height, nodes_[child2].height);
   nodes_[child1].parent = node;
   nodes_[child2].parent = node;
-  return node;
 }
 
 void DynamicTree::moveProxy(int proxy, const Aabb& fatAabb) {

@@ -5,8 +5,10 @@
 
 #include <impulse2d/math.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace impulse2d {
@@ -22,9 +24,13 @@ class DynamicTree {
   /// Gives the proxy a new fat box without touching the tree above it: rebuild() must follow
   /// before the next query (for many proxies moved at once).
   void setFatAabb(int proxy, const Aabb& fatAabb) { nodes_[proxy].aabb = fatAabb; }
+  /// Runs task(i) for every i in [0, count), on several threads if it likes, and returns when
+  /// all are done.
+  using ForEachTask = std::function<void(int count, const std::function<void(int)>& task)>;
   /// Builds every inner node anew over the leaves, top down; the proxies keep their ids and
-  /// boxes, so every query meets the same proxies (in another order).
-  void rebuild();
+  /// boxes, so every query meets the same proxies (in another order). With `forEach`, the
+  /// branches below the top few splits are built as tasks: the same tree, node for node.
+  void rebuild(const ForEachTask& forEach = nullptr);
   int proxyCount() const { return proxyCount_; }
 
   const Aabb& fatAabb(int proxy) const { return nodes_[proxy].aabb; }
@@ -129,7 +135,17 @@ class DynamicTree {
     double x, y;
     int id;
   };
-  int buildBranch(LeafCenter* first, LeafCenter* last);
+  // A branch over leaves [first, last) whose inner nodes take the ids ids[0, last - first - 1)
+  // in preorder: the node itself ids[0], then its first child's branch, then the second's.
+  struct Branch {
+    LeafCenter* first;
+    LeafCenter* last;
+    const int* ids;
+  };
+  static LeafCenter* split(const Branch& branch);
+  int buildBranch(const Branch& branch);
+  int splitTop(const Branch& branch, int depth);
+  void link(int node, int child1, int child2);
   int allocateNode();
   void freeNode(int id);
   void insertLeaf(int leaf);
@@ -143,7 +159,12 @@ class DynamicTree {
   int freeList_ = kNull;
   int proxyCount_ = 0;
   mutable std::vector<int> stack_;
-  std::vector<LeafCenter> leaves_;  // rebuild()'s
+  // rebuild()'s: the leaves, the inner nodes' ids, the branches left to tasks, and the top
+  // nodes (node, child1, child2) in preorder.
+  std::vector<LeafCenter> leaves_;
+  std::vector<int> innerIds_;
+  std::vector<Branch> tasks_;
+  std::vector<std::array<int, 3>> topNodes_;
 };
 
 }  // namespace impulse2d

@@ -97,7 +97,11 @@ void WorldImpl::updateBroadPhase() {
       markMoved(proxy);
     }
   }
-  if (rebuild) tree.rebuild();
+  if (rebuild) {
+    tree.rebuild([this](int count, const std::function<void(int)>& task) {
+      stepWorkers.stage(count, [&task](int block, int) { task(block); });
+    });
+  }
 }
 
 void WorldImpl::findNewContacts() {
