@@ -61,24 +61,37 @@ void moveOut(std::vector<Body>& bodies, const int* begin, const int* end, const 
 
 void WorldImpl::keepOutOfStatic() {
   const StageClock clock(stage(&StepProfile::continuous));
-  // The deep ones first, by body (in slot order, then contact order: deterministic).
+  // The deep ones first, found in parallel blocks of contacts (nothing moves yet), then by body
+  // (in slot order, then contact order: deterministic).
+  const int blocks =
+      static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
+  scratch.deepStaticOfBlock.resize(static_cast<size_t>(blocks));
+  stepWorkers.stage(blocks, [&](int block, int) {
+    std::vector<DeepStatic>& found = scratch.deepStaticOfBlock[static_cast<size_t>(block)].value;
+    found.clear();
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
+    for (size_t i = first; i < last; ++i) {
+      const Contact& contact = contacts[i];
+      // Static is told by movableIndex (a contact's bodies are alive): most contacts of a pile
+      // are between two dynamic bodies, and are passed over without reading the bodies.
+      const bool staticA = !isMovable(contact.bodyA), staticB = !isMovable(contact.bodyB);
+      if (staticA == staticB || contact.manifold.pointCount == 0) continue;
+      const int slot = staticA ? contact.bodyB : contact.bodyA;
+      if (!isActive(bodies.items[slot])) continue;
+      // The manifold's normal points from A to B.
+      const Vec2 n = staticA ? contact.manifold.normal : Vec2(-contact.manifold.normal);
+      if (staticDepth(contact, n) > allowedDepth(contact)) {
+        found.push_back({slot, static_cast<int>(i), n});
+      }
+    }
+  });
   std::vector<DeepStatic>& deep = scratch.deepStatic;
   deep.clear();
-  scratch.clusterPush.assign(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
-  for (size_t i = 0; i < contacts.size(); ++i) {
-    const Contact& contact = contacts[i];
-    // Static is told by movableIndex (a contact's bodies are alive): most contacts of a pile are
-    // between two dynamic bodies, and are passed over without reading the bodies.
-    const bool staticA = !isMovable(contact.bodyA), staticB = !isMovable(contact.bodyB);
-    if (staticA == staticB || contact.manifold.pointCount == 0) continue;
-    const int slot = staticA ? contact.bodyB : contact.bodyA;
-    if (!isActive(bodies.items[slot])) continue;
-    // The manifold's normal points from A to B.
-    const Vec2 n = staticA ? contact.manifold.normal : Vec2(-contact.manifold.normal);
-    if (staticDepth(contact, n) > allowedDepth(contact)) {
-      deep.push_back({slot, static_cast<int>(i), n});
-    }
+  for (const auto& block : scratch.deepStaticOfBlock) {
+    deep.insert(deep.end(), block.value.begin(), block.value.end());
   }
+  scratch.clusterPush.assign(static_cast<size_t>(weldClusters.count()), Vec2::Zero());
   std::sort(deep.begin(), deep.end(), [](const DeepStatic& x, const DeepStatic& y) {
     return x.slot != y.slot ? x.slot < y.slot : x.contact < y.contact;
   });

@@ -150,8 +150,9 @@ struct StepScratch {
   // Sub-steps' colouring (world_substeps.cpp): the active joints' slots, colour after colour.
   std::vector<int> jointOrder;
   // Continuous collision (continuous.cpp): by fast body, the first impact of one that is not a
-  // bullet (found in parallel).
+  // bullet (found in parallel); by dynamic entry, whether it may have moved fast (sub-steps).
   std::vector<double> fastImpacts;
+  std::vector<uint8_t> mayBeFast;
   // Both solver paths: the joints the warm-start guard looks at.
   std::vector<Joint*> guardedJoints;
   // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.
@@ -168,9 +169,10 @@ struct StepScratch {
   std::vector<SolverBody> guardedBodies;
   // Baumgarte's split joints (world_step.cpp, splitStressedJoints): their slots.
   std::vector<int> splitJoints;
-  // Keeping out of static bodies (keep_out_of_static.cpp): the deep bodies; by welded cluster,
-  // its first push out this step.
+  // Keeping out of static bodies (keep_out_of_static.cpp): the deep bodies, and by block of
+  // contacts those it found; by welded cluster, its first push out this step.
   std::vector<DeepStatic> deepStatic;
+  std::vector<OwnLine<std::vector<DeepStatic>>> deepStaticOfBlock;
   std::vector<Vec2> clusterPush;
   // Sleeping (island_sleep.cpp). By movable place: the islands' union-find links, whether a
   // moving kinematic body holds the body; by island root: whether a body is awake, how long all

@@ -457,7 +457,22 @@ void WorldImpl::findFastSubstepBodies() {
   SubstepBodies& sb = substepBodies;
   fastBodies.clear();
   fastClusters.clear();
-  for (int e = 0; e < sb.dynamicCount(); ++e) {
+  // In parallel, which lone bodies moved fast (each test reads its body, anywhere in memory;
+  // a welded cluster's members are left to noteIfFast); then in order, the list.
+  const int count = sb.dynamicCount();
+  std::vector<uint8_t>& mayBeFast = scratch.mayBeFast;
+  mayBeFast.resize(static_cast<size_t>(count));
+  stepWorkers.stage(blocksOf(count, kBodiesPerBlock), [&](int block, int) {
+    const int end = std::min(count, (block + 1) * kBodiesPerBlock);
+    for (int e = block * kBodiesPerBlock; e < end; ++e) {
+      const auto [first, last] = sb.clusterRows().ofRow(e);
+      const BodyState& s = sb.state(e);
+      mayBeFast[static_cast<size_t>(e)] =
+          first != last || isFast(bodies.items[sb.start(e).slot], Vec2(s.dx, s.dy), s.turned, 0.0);
+    }
+  });
+  for (int e = 0; e < count; ++e) {
+    if (!mayBeFast[static_cast<size_t>(e)]) continue;
     const BodyState& s = sb.state(e);
     const BodyStart& start = sb.start(e);
     noteIfFast(sb.clusterRows(), e, start.slot, sb.sim(e).center0, start.angle0, Vec2(s.dx, s.dy),
