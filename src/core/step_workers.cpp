@@ -40,8 +40,9 @@ struct StepWorkers::Shared {
     int end = 0;
   };
   struct Stage {
-    explicit Stage(int runs) : runs(static_cast<size_t>(runs)) {}
-    std::deque<Run> runs;
+    explicit Stage(int threads) : runs(static_cast<size_t>(threads)) {}
+    std::deque<Run> runs;  // one per thread; the first runCount are this stage's
+    int runCount = 0;
     alignas(64) std::atomic<int> done{0};
     int blocks = 0;
     const Block* fn = nullptr;
@@ -51,7 +52,7 @@ struct StepWorkers::Shared {
 
   // Claims and runs blocks of `stage`, its own run first, until none is left.
   static void work(Stage& stage, int worker) {
-    const size_t runs = stage.runs.size();
+    const size_t runs = static_cast<size_t>(stage.runCount);
     for (size_t k = 0; k < runs; ++k) {
       Run& run = stage.runs[(static_cast<size_t>(worker) + k) % runs];
       for (int block = run.next.fetch_add(1, std::memory_order_relaxed); block < run.end;
@@ -79,9 +80,12 @@ struct StepWorkers::Shared {
   }
 
   tbb::task_arena arena;
-  // This session's stages, by number: a deque keeps them in place as it grows, so a helper that
-  // still holds a finished stage only finds no block left in it.
+  // The stages, by number in the session: a deque keeps them in place as it grows, so a helper
+  // that still holds a finished stage only finds no block left in it. They are kept from session
+  // to session (the first `used` are this one's): a step of 24 colours and 8 sub-steps has
+  // hundreds, and making each anew took two allocations.
   std::deque<Stage> stages;
+  size_t used = 0;
   std::atomic<Stage*> current{nullptr};
   std::atomic<bool> ending{false};
 };
@@ -104,7 +108,7 @@ void StepWorkers::session(const std::function<void()>& body) {
     return;
   }
   Shared& s = *shared_;
-  s.stages.clear();
+  s.used = 0;
   s.current.store(nullptr, std::memory_order_relaxed);
   s.ending.store(false, std::memory_order_relaxed);
   s.arena.execute([&] {
@@ -126,7 +130,11 @@ void StepWorkers::stage(int blocks, const Block& fn) {
     return;
   }
   const int runs = std::min(threads_, blocks);
-  Shared::Stage& stage = shared_->stages.emplace_back(runs);
+  Shared& s = *shared_;
+  if (s.used == s.stages.size()) s.stages.emplace_back(threads_);
+  Shared::Stage& stage = s.stages[s.used++];
+  stage.runCount = runs;
+  stage.done.store(0, std::memory_order_relaxed);
   stage.blocks = blocks;
   stage.fn = &fn;
   for (int r = 0; r < runs; ++r) {  // run r: blocks [r blocks / runs, (r + 1) blocks / runs)
