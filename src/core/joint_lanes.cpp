@@ -79,20 +79,21 @@ void JointLanes::layOut(const std::vector<Joint>& joints, const std::vector<int>
 }
 
 void JointLanes::prefetchBodiesAhead(int k, int lane, int end, const std::vector<Joint>& joints,
-                                     const SubstepBodies& bodies, bool poses) const {
+                                     const SubstepBodies& bodies) const {
   // A colour's joints share no body, so each lane's two bodies are anywhere in the rows: each
   // lane waited on memory for them (v3_joint_grid: a tenth of its step filling and writing back).
   constexpr int kLanesAhead = 4;
   lane += kLanesAhead;
-  if (lane >= bundles_[static_cast<size_t>(k)].laneCount) {
-    lane -= kJointLanes;
+  const int used = bundles_[static_cast<size_t>(k)].laneCount;
+  if (lane >= used) {  // on into the next bundle, whose lanes count from 0
+    lane -= used;
     if (++k >= end) return;
   }
   const JointBundle& j = bundles_[static_cast<size_t>(k)];
   if (lane >= j.laneCount) return;
   const Joint& joint = joints[static_cast<size_t>(j.joint[lane])];
-  bodies.prefetchView(joint.bodyA, poses);
-  bodies.prefetchView(joint.bodyB, poses);
+  bodies.prefetchView(joint.bodyA, true);
+  bodies.prefetchView(joint.bodyB, true);
 }
 
 void JointLanes::fill(int begin, int end, std::vector<Joint>& joints, const SubstepBodies& bodies,
@@ -103,7 +104,7 @@ void JointLanes::fill(int begin, int end, std::vector<Joint>& joints, const Subs
     j.anyMotor = j.anyLimit = false;
     j.scalarLanes = 0;
     for (int lane = 0; lane < j.laneCount; ++lane) {
-      prefetchBodiesAhead(k, lane, end, joints, bodies, true);
+      prefetchBodiesAhead(k, lane, end, joints, bodies);
       fillLane(joints[static_cast<size_t>(j.joint[lane])], j, lane, bodies, h);
     }
     for (int lane = j.laneCount; lane < kJointLanes; ++lane) setEmptyLane(j, lane, identityOffset);
@@ -170,7 +171,7 @@ void JointLanes::writeBack(int begin, int end, std::vector<Joint>& joints,
   for (int k = begin; k < end; ++k) {
     const JointBundle& j = bundles_[static_cast<size_t>(k)];
     for (int lane = 0; lane < j.laneCount; ++lane) {
-      prefetchBodiesAhead(k, lane, end, joints, bodies, true);
+      prefetchBodiesAhead(k, lane, end, joints, bodies);
       Joint& joint = joints[static_cast<size_t>(j.joint[lane])];
       toJoint(j, lane, joint);
       // The rest of what prepareRevolute set in the last relax pass (rigid feedback).

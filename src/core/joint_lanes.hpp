@@ -123,9 +123,10 @@ class JointLanes {
   void writeBack(int begin, int end, std::vector<Joint>& joints, const SubstepBodies& bodies) const;
 
  private:
-  /// Asks for the rows of the bodies of the lane a few after (k, lane), among bundles < end.
+  /// Asks for the rows and start poses of the bodies of the lane a few after (k, lane), among
+  /// bundles < end.
   void prefetchBodiesAhead(int k, int lane, int end, const std::vector<Joint>& joints,
-                           const SubstepBodies& bodies, bool poses) const;
+                           const SubstepBodies& bodies) const;
   /// Fills a lane with its joint.
   static void fillLane(Joint& joint, JointBundle& j, int lane, const SubstepBodies& bodies,
                        double h);
