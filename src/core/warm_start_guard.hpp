@@ -45,10 +45,9 @@ class WarmStartGuard {
         index = static_cast<int>(bodies_.size());
         const SolverBody v = view(slot);
         Local b;
-        b.v = b.trialV = v.linearVelocity;
-        b.w = b.trialW = v.angularVelocity;
-        b.invMass = v.invMass;
-        b.invInertia = v.invInertia;
+        b.v = v.linearVelocity;
+        b.w = v.angularVelocity;
+        b.trial = v;  // its velocity and masses
         b.center = v.center;
         bodies_.push_back(b);
         parent_.push_back(index);
@@ -85,7 +84,8 @@ class WarmStartGuard {
     for (size_t i = 0; i < n; ++i) {
       const size_t root = static_cast<size_t>(root_[i]);
       before_[root] += energy(bodies_[i], bodies_[i].v, bodies_[i].w);
-      mass_[root] += bodies_[i].invMass > 0.0 ? 1.0 / bodies_[i].invMass : 0.0;
+      const double invMass = bodies_[i].trial.invMass;
+      mass_[root] += invMass > 0.0 ? 1.0 / invMass : 0.0;
     }
     // The trial: the joints' warm start, then the contacts', as the solvers apply them.
     // A warm start only adds impulses: what it gives one body does not depend on the other, so
@@ -95,11 +95,11 @@ class WarmStartGuard {
     for (size_t k = 0; k < joints.size(); ++k) {
       Joint& joint = *joints[k];
       const auto [la, lb] = ends_[k];
-      BodyVelocity a = la >= 0 ? trial(bodies_[la]) : BodyVelocity();
-      BodyVelocity b = lb >= 0 ? trial(bodies_[lb]) : BodyVelocity();
+      BodyVelocity a = la >= 0 ? bodies_[la].trial : BodyVelocity();
+      BodyVelocity b = lb >= 0 ? bodies_[lb].trial : BodyVelocity();
       applyJointWarmStart(joint, a, b);  // reads the joint only
-      if (la >= 0) bodies_[la].trialV = a.linearVelocity, bodies_[la].trialW = a.angularVelocity;
-      if (lb >= 0) bodies_[lb].trialV = b.linearVelocity, bodies_[lb].trialW = b.angularVelocity;
+      if (la >= 0) bodies_[la].trial = a;
+      if (lb >= 0) bodies_[lb].trial = b;
     }
     for (const GuardedContact& g : guardedContacts_) {
       const Contact& c = contacts[static_cast<size_t>(g.contact)];
@@ -114,7 +114,7 @@ class WarmStartGuard {
     after_.assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
       after_[static_cast<size_t>(root_[i])] +=
-          energy(bodies_[i], bodies_[i].trialV, bodies_[i].trialW);
+          energy(bodies_[i], bodies_[i].trial.linearVelocity, bodies_[i].trial.angularVelocity);
     }
     // Where a group's energy would more than double, all its impulses shrink: the energy a warm
     // start adds grows with their square.
@@ -143,27 +143,21 @@ class WarmStartGuard {
 
  private:
   struct Local {
-    Vec2 v = Vec2::Zero(), trialV = Vec2::Zero(), center = Vec2::Zero();
-    double w = 0.0, trialW = 0.0, invMass = 0.0, invInertia = 0.0;
+    Vec2 v = Vec2::Zero(), center = Vec2::Zero();  // as the step found it
+    double w = 0.0;
+    BodyVelocity trial;  // the velocity the trial warm start gives it, and its masses
   };
   struct GuardedContact {
     int contact, a, b;  // its index, its bodies' locals (-1: not moving)
   };
-  static BodyVelocity trial(const Local& b) {
-    BodyVelocity v;
-    v.linearVelocity = b.trialV;
-    v.angularVelocity = b.trialW;
-    v.invMass = b.invMass;
-    v.invInertia = b.invInertia;
-    return v;
-  }
   static double energy(const Local& b, const Vec2& v, double w) {
-    return (b.invMass > 0.0 ? 0.5 * v.squaredNorm() / b.invMass : 0.0) +
-           (b.invInertia > 0.0 ? 0.5 * w * w / b.invInertia : 0.0);
+    const double invMass = b.trial.invMass, invInertia = b.trial.invInertia;
+    return (invMass > 0.0 ? 0.5 * v.squaredNorm() / invMass : 0.0) +
+           (invInertia > 0.0 ? 0.5 * w * w / invInertia : 0.0);
   }
   static void push(Local& b, const Vec2& point, const Vec2& p) {
-    b.trialV += b.invMass * p;
-    b.trialW += b.invInertia * cross(Vec2(point - b.center), p);
+    b.trial.linearVelocity += b.trial.invMass * p;
+    b.trial.angularVelocity += b.trial.invInertia * cross(Vec2(point - b.center), p);
   }
   // The union-find's parents apart from the locals: a find walks 4 bytes a step, not a local.
   int find(int i) {
