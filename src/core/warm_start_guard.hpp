@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "contact.hpp"
@@ -26,11 +27,12 @@ class WarmStartGuard {
   /// `joints` are the step's active joints, `contacts` the step's contacts (impulses not yet
   /// handed to the solver); rowOf(slot) is the solver row of a dynamic body (members of a welded
   /// cluster share one) or -1, below `rows`; view(slot) a joint's view of the body (its row's
-  /// velocity, masses and centre of mass). The joints' arms are those of their last pass (this
+  /// velocity, masses and centre of mass), and prefetchBody(slot) asks ahead for what view(slot)
+  /// reads (a hint; nullptr for none). The joints' arms are those of their last pass (this
   /// step's or the last step's): close enough to weigh an energy, and no joint is prepared twice.
-  template <class RowOf, class View>
+  template <class RowOf, class View, class PrefetchBody>
   void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows, RowOf rowOf,
-           View view, double gravityStep) {
+           View view, PrefetchBody prefetchBody, double gravityStep) {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();
@@ -57,7 +59,9 @@ class WarmStartGuard {
     auto unite = [&](int a, int b) {
       if (a >= 0 && b >= 0) parent_[static_cast<size_t>(find(a))] = find(b);
     };
-    for (Joint* joint : joints) {
+    for (size_t k = 0; k < joints.size(); ++k) {
+      prefetchAhead(joints, k, 1, prefetchBody);
+      const Joint* joint = joints[k];
       const int a = local(joint->bodyA), b = local(joint->bodyB);
       ends_.push_back({a, b});
       unite(a, b);
@@ -93,6 +97,7 @@ class WarmStartGuard {
     // dropped. The copies carry what the rows read (reading a whole view of each end instead
     // cost v3_joint_grid about 2 % of its step).
     for (size_t k = 0; k < joints.size(); ++k) {
+      prefetchAhead(joints, k, kJointLines, nullptr);
       Joint& joint = *joints[k];
       const auto [la, lb] = ends_[k];
       BodyVelocity a = la >= 0 ? bodies_[la].trial : BodyVelocity();
@@ -142,6 +147,27 @@ class WarmStartGuard {
   }
 
  private:
+  // The joints (600 bytes each, v3_joint_grid's 20,000 do not stay in cache) are read in order
+  // but far apart: `perf` put a fifth of the guard on the first load of each. So the first
+  // `lines` of joint k + 8 and the bodies of joint k + 4 (whose line arrived by then) are asked
+  // for ahead; hints only.
+  static constexpr int kJointLines = 4;  // what a warm start reads (world_substeps.cpp)
+  template <class PrefetchBody>
+  static void prefetchAhead(const std::vector<Joint*>& joints, size_t k, int lines,
+                            const PrefetchBody& prefetchBody) {
+    constexpr size_t kJointsAhead = 8, kBodiesAhead = 4;
+    if (k + kJointsAhead < joints.size()) {
+      const char* bytes = reinterpret_cast<const char*>(joints[k + kJointsAhead]);
+      for (int line = 0; line < lines; ++line) __builtin_prefetch(bytes + 64 * line);
+    }
+    if constexpr (!std::is_same_v<PrefetchBody, std::nullptr_t>) {
+      if (k + kBodiesAhead < joints.size()) {
+        prefetchBody(joints[k + kBodiesAhead]->bodyA);
+        prefetchBody(joints[k + kBodiesAhead]->bodyB);
+      }
+    }
+  }
+
   struct Local {
     Vec2 v = Vec2::Zero(), center = Vec2::Zero();  // as the step found it
     double w = 0.0;

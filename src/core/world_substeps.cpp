@@ -429,7 +429,8 @@ void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
   warmStartGuard.run(
       scratch.guardedJoints, contacts, sb.dynamicCount(),
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
-      [&](int slot) { return sb.view(slot); }, def.gravity.norm() * dt);
+      [&](int slot) { return sb.view(slot); }, [&](int slot) { sb.prefetchView(slot, true); },
+      def.gravity.norm() * dt);
   const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
   stepWorkers.stage(contactBlocks, [&](int block, int) {
     const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
