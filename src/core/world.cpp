@@ -202,6 +202,7 @@ BodyId World::createBody(const BodyDef& def, std::string* error) {
   const int slot = w.bodies.acquire();
   if (slot >= static_cast<int>(w.jointsOfBody.size())) {
     w.jointsOfBody.resize(slot + 1);
+    w.jointNeighbours.invalidate();
     w.bookkeeping.resize(slot + 1);
   }
   Body& body = w.bodies.items[slot];
@@ -256,6 +257,7 @@ bool World::destroyBody(BodyId id) {
   w.bodies.release(id.index);
   w.removeMovable(id.index);
   w.jointsOfBody[id.index].clear();
+  w.jointNeighbours.invalidate();
   w.bookkeeping[id.index] = BodyBookkeeping();
   return true;
 }
@@ -359,6 +361,7 @@ JointId World::createJoint(const JointDef& def, std::string* error) {
   if (isRigidWeld(joint)) ++w.rigidWelds;
   w.jointsOfBody[joint.bodyA].push_back(slot);
   w.jointsOfBody[joint.bodyB].push_back(slot);
+  w.jointNeighbours.invalidate();
   if (!def.name.empty()) w.jointByName[def.name] = slot;
   if (!def.collideConnected) {  // contacts between the two bodies end now
     const int lo = std::min(joint.bodyA, joint.bodyB), hi = std::max(joint.bodyA, joint.bodyB);
@@ -378,6 +381,7 @@ bool World::destroyJoint(JointId id) {
   for (const int slot : {joint.bodyA, joint.bodyB}) {
     auto& list = w.jointsOfBody[slot];
     list.erase(std::remove(list.begin(), list.end(), id.index), list.end());
+    w.jointNeighbours.invalidate();
     w.wakeBody(w.bodies.items[slot]);
     // The pair may collide again: let the broad phase report it anew.
     for (const int proxy : w.bookkeeping[slot].proxies) w.markMoved(proxy);

@@ -131,15 +131,17 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   // a static pin) holds the whole group (a chain hanging from a ledge, a rope over the edge),
   // and a group that rises as a whole (thrown up, bouncing off another) may still come back.
   std::vector<int>& group = scratch.lostGroup;
+  jointNeighbours.refresh(jointsOfBody, jointBodies);
   for (const int first : candidates) {
     if (mark[first] != 1) continue;
     group.assign(1, first);
     mark[first] = 2;
     bool held = false;
     for (size_t k = 0; k < group.size(); ++k) {
-      for (const int j : jointsOfBody[group[k]]) {
-        const auto [bodyA, bodyB] = jointBodies[j];
-        const int other = bodyA == group[k] ? bodyB : bodyA;
+      const int slot = group[k];
+      for (const JointNeighbours::End* e = jointNeighbours.begin(slot);
+           e != jointNeighbours.end(slot); ++e) {
+        const int other = e->other;
         if (mark[other] == 0) held = true;
         if (mark[other] == 1) {
           mark[other] = 2;
