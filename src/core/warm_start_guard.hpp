@@ -30,9 +30,13 @@ class WarmStartGuard {
   /// velocity, masses and centre of mass), and prefetchBody(slot) asks ahead for what view(slot)
   /// reads (a hint; nullptr for none). The joints' arms are those of their last pass (this
   /// step's or the last step's): close enough to weigh an energy, and no joint is prepared twice.
-  template <class RowOf, class View, class PrefetchBody>
+  /// `colorStart`, when given, cuts `joints` into colours, [colorStart[c], colorStart[c + 1]),
+  /// whose joints share no row, the last of them the overflow; a colour's trial then runs in
+  /// blocks through forEachBlock(blocks, fn(block)), which may run them at once.
+  template <class RowOf, class View, class PrefetchBody, class ForEachBlock>
   void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows, RowOf rowOf,
-           View view, PrefetchBody prefetchBody, double gravityStep) {
+           View view, PrefetchBody prefetchBody, const std::vector<int>* colorStart,
+           const ForEachBlock& forEachBlock, double gravityStep) {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();
@@ -60,7 +64,7 @@ class WarmStartGuard {
       if (a >= 0 && b >= 0) parent_[static_cast<size_t>(find(a))] = find(b);
     };
     for (size_t k = 0; k < joints.size(); ++k) {
-      prefetchAhead(joints, k, 1, prefetchBody);
+      prefetchAhead(joints, k, 1, prefetchBody, joints.size());
       const Joint* joint = joints[k];
       const int a = local(joint->bodyA), b = local(joint->bodyB);
       ends_.push_back({a, b});
@@ -96,16 +100,32 @@ class WarmStartGuard {
     // an end with no trial copy (a body the step does not move) is a stand-in whose change is
     // dropped. The copies carry what the rows read (reading a whole view of each end instead
     // cost v3_joint_grid about 2 % of its step).
-    for (size_t k = 0; k < joints.size(); ++k) {
-      prefetchAhead(joints, k, kJointLines, nullptr);
-      Joint& joint = *joints[k];
-      const auto [la, lb] = ends_[k];
-      BodyVelocity a = la >= 0 ? bodies_[la].trial : BodyVelocity();
-      BodyVelocity b = lb >= 0 ? bodies_[lb].trial : BodyVelocity();
-      applyJointWarmStart(joint, a, b);  // reads the joint only
-      if (la >= 0) bodies_[la].trial = a;
-      if (lb >= 0) bodies_[lb].trial = b;
+    // Each body takes its joints' impulses in joint order on any number of threads: a colour's
+    // joints touch a row each at most once, and colours go one after the other.
+    const auto trialOf = [&](size_t first, size_t last) {
+      for (size_t k = first; k < last; ++k) {
+        prefetchAhead(joints, k, kJointLines, nullptr, last);
+        Joint& joint = *joints[k];
+        const auto [la, lb] = ends_[k];
+        BodyVelocity a = la >= 0 ? bodies_[la].trial : BodyVelocity();
+        BodyVelocity b = lb >= 0 ? bodies_[lb].trial : BodyVelocity();
+        applyJointWarmStart(joint, a, b);  // reads the joint only
+        if (la >= 0) bodies_[la].trial = a;
+        if (lb >= 0) bodies_[lb].trial = b;
+      }
+    };
+    const size_t colors = colorStart != nullptr ? colorStart->size() - 2 : 0;
+    for (size_t color = 0; color < colors; ++color) {
+      const size_t first = static_cast<size_t>((*colorStart)[color]);
+      const size_t last = static_cast<size_t>((*colorStart)[color + 1]);
+      const int blocks =
+          static_cast<int>((last - first + kTrialJointsPerBlock - 1) / kTrialJointsPerBlock);
+      forEachBlock(blocks, [&](int block) {
+        const size_t begin = first + static_cast<size_t>(block) * kTrialJointsPerBlock;
+        trialOf(begin, std::min(last, begin + kTrialJointsPerBlock));
+      });
     }
+    trialOf(colors > 0 ? static_cast<size_t>((*colorStart)[colors]) : 0, joints.size());
     for (const GuardedContact& g : guardedContacts_) {
       const Contact& c = contacts[static_cast<size_t>(g.contact)];
       const Vec2 n = c.manifold.normal, t = perp(n);
@@ -152,16 +172,17 @@ class WarmStartGuard {
   // `lines` of joint k + 8 and the bodies of joint k + 4 (whose line arrived by then) are asked
   // for ahead; hints only.
   static constexpr int kJointLines = 4;  // what a warm start reads (world_substeps.cpp)
+  static constexpr size_t kTrialJointsPerBlock = 256;
   template <class PrefetchBody>
   static void prefetchAhead(const std::vector<Joint*>& joints, size_t k, int lines,
-                            const PrefetchBody& prefetchBody) {
+                            const PrefetchBody& prefetchBody, size_t end) {
     constexpr size_t kJointsAhead = 8, kBodiesAhead = 4;
-    if (k + kJointsAhead < joints.size()) {
+    if (k + kJointsAhead < end) {
       const char* bytes = reinterpret_cast<const char*>(joints[k + kJointsAhead]);
       for (int line = 0; line < lines; ++line) __builtin_prefetch(bytes + 64 * line);
     }
     if constexpr (!std::is_same_v<PrefetchBody, std::nullptr_t>) {
-      if (k + kBodiesAhead < joints.size()) {
+      if (k + kBodiesAhead < end) {
         prefetchBody(joints[k + kBodiesAhead]->bodyA);
         prefetchBody(joints[k + kBodiesAhead]->bodyB);
       }

@@ -430,6 +430,8 @@ void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
       scratch.guardedJoints, contacts, sb.dynamicCount(),
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
       [&](int slot) { return sb.view(slot); }, [&](int slot) { sb.prefetchView(slot, true); },
+      &jointStart,
+      [&](int blocks, const auto& fn) { stepWorkers.stage(blocks, [&](int b, int) { fn(b); }); },
       def.gravity.norm() * dt);
   const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
   stepWorkers.stage(contactBlocks, [&](int block, int) {
