@@ -2,6 +2,8 @@
 
 #include "constraint_coloring.hpp"
 
+#include <algorithm>
+
 namespace impulse2d {
 namespace {
 
@@ -23,7 +25,7 @@ int startColor(uint64_t key) {
 
 void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
                         const std::vector<std::pair<int, int>>& jointBodies,
-                        const SubstepBodies& bodies, int minSize) {
+                        const SubstepBodies& bodies, int minSize, StepWorkers& workers) {
   ConstraintColoring coloring;
   coloring.reset(bodies.dynamicCount());
   constexpr int kOverflowIndex = ConstraintColoring::kMaxColors;  // the overflow's, in `count`
@@ -43,14 +45,31 @@ void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<
     ++count[jointColor_[k]];
     ++jointCount[jointColor_[k]];
   }
+  // What the colouring needs of each contact, in parallel: reading a contact and its bodies'
+  // entries waits on memory at each (two thirds of v3_many_pyramids' 1.2 ms colouring stage, on
+  // one thread while the others waited). Then the colours, in contact order, on one thread.
+  ends_.resize(contacts.size());
+  const int blocks =
+      static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
+  workers.stage(blocks, [&](int block, int) {
+    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
+    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
+    for (size_t i = first; i < last; ++i) {
+      const Contact& contact = contacts[i];
+      Ends& e = ends_[i];
+      e.a = e.b = -1;  // not solved, unless:
+      if (contact.manifold.pointCount == 0) continue;
+      const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
+      if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
+      if (dynamicA == dynamicB) continue;          // two members of one welded cluster
+      e = {dynamicA, dynamicB, startColor(contact.key)};
+    }
+  });
   for (size_t i = 0; i < contacts.size(); ++i) {
-    const Contact& contact = contacts[i];
+    const Ends& e = ends_[i];
     colorOfContact_[i] = -1;
-    if (contact.manifold.pointCount == 0) continue;
-    const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
-    if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
-    if (dynamicA == dynamicB) continue;          // two members of one welded cluster
-    const int color = coloring.assign(dynamicA, dynamicB, startColor(contact.key));
+    if (e.a < 0 && e.b < 0) continue;
+    const int color = coloring.assign(e.a, e.b, e.start);
     colorOfContact_[i] = color == ConstraintColoring::kOverflow ? kOverflowIndex : color;
     ++count[colorOfContact_[i]];
   }

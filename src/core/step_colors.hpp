@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "contact.hpp"
+#include "step_workers.hpp"
 #include "substep_bodies.hpp"
 
 namespace impulse2d {
@@ -17,10 +18,11 @@ class StepColors {
  public:
   /// Colours the joints (slots, in the order given, with their bodies' slots) first and then the
   /// contacts (in their order); a colour of fewer than `minSize` constraints joins the overflow.
-  /// On one thread.
+  /// What each contact needs is read in parallel blocks on `workers`; the colours are given on
+  /// one thread, in order.
   void assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
               const std::vector<std::pair<int, int>>& jointBodies, const SubstepBodies& bodies,
-              int minSize);
+              int minSize, StepWorkers& workers);
 
   /// The colours kept; the overflow is colour colorCount().
   int colorCount() const { return static_cast<int>(jointsOfColor_.size()) - 1; }
@@ -33,6 +35,12 @@ class StepColors {
   int contactsOf(int color) const { return contactCount_[color]; }
 
  private:
+  static constexpr size_t kContactsPerBlock = 1024;
+  struct Ends {
+    int a, b;   // the dynamic entries a contact's impulses move (-1: none); both -1: not solved
+    int start;  // the colour its search starts at
+  };
+  std::vector<Ends> ends_;                       // by contact, scratch
   std::vector<int> colorOfContact_;              // by contact
   std::vector<int> jointColor_;                  // by joint given to assign(), scratch
   std::vector<std::vector<int>> jointsOfColor_;  // by colour kept, the overflow last
