@@ -96,17 +96,28 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   floor.height = floor.deepest + deepestCorner(staticBounds, -floor.down);
 
   // Awake dynamic bodies only: a sleeping one rests on something, and static bodies cost
-  // nothing here.
+  // nothing here. Each body read in parallel blocks (a scan over every body, a cache miss each),
+  // then the candidates listed in order.
   std::vector<int>& candidates = scratch.lostCandidates;
-  candidates.clear();
-  for (const int i : movableSlots) {
-    const Body& body = bodies.items[i];
-    if (body.type != BodyType::Dynamic || !body.awake) continue;
-    if (floor.top(body) > floor.deepest + floor.height) {
-      candidates.push_back(i);
-    } else {
-      bookkeeping[i].lost = false;  // back, or never gone
+  std::vector<uint8_t>& below = scratch.belowLine;
+  const int count = static_cast<int>(movableSlots.size());
+  below.resize(movableSlots.size());
+  stepWorkers.stage((count + kBodiesPerBlock - 1) / kBodiesPerBlock, [&](int block, int) {
+    const int end = std::min(count, (block + 1) * kBodiesPerBlock);
+    for (int k = block * kBodiesPerBlock; k < end; ++k) {
+      const int i = movableSlots[static_cast<size_t>(k)];
+      const Body& body = bodies.items[i];
+      const bool candidate = body.type == BodyType::Dynamic && body.awake &&
+                             floor.top(body) > floor.deepest + floor.height;
+      below[static_cast<size_t>(k)] = candidate;
+      if (!candidate && body.type == BodyType::Dynamic && body.awake) {
+        bookkeeping[i].lost = false;  // back, or never gone
+      }
     }
+  });
+  candidates.clear();
+  for (int k = 0; k < count; ++k) {
+    if (below[static_cast<size_t>(k)]) candidates.push_back(movableSlots[static_cast<size_t>(k)]);
   }
   if (candidates.empty()) return;
 
@@ -199,14 +210,24 @@ void World::removeEscapedBodies() {
   w.overflowedBodies.clear();
   // Only what moves can leave: static bodies never do (the solver never writes them), and
   // sleeping ones have not moved since they were checked.
-  std::vector<RemovedBody> escaped;
-  for (const int i : w.movableSlots) {
-    const Body& body = w.bodies.items[i];
-    if (!body.awake) continue;
-    RemovalCause cause;
-    if (const char* why = escapeReason(body, &cause)) {
-      escaped.push_back(RemovedBody{body.id, body.name, body.xf.p, why, cause});
+  // Each body read in parallel blocks, the reports then made in order.
+  std::vector<std::pair<const char*, RemovalCause>>& escapes = w.scratch.escapes;
+  const int count = static_cast<int>(w.movableSlots.size());
+  escapes.resize(w.movableSlots.size());
+  w.stepWorkers.stage((count + kBodiesPerBlock - 1) / kBodiesPerBlock, [&](int block, int) {
+    const int end = std::min(count, (block + 1) * kBodiesPerBlock);
+    for (int k = block * kBodiesPerBlock; k < end; ++k) {
+      const Body& body = w.bodies.items[w.movableSlots[static_cast<size_t>(k)]];
+      auto& [why, cause] = escapes[static_cast<size_t>(k)];
+      why = body.awake ? escapeReason(body, &cause) : nullptr;
     }
+  });
+  std::vector<RemovedBody> escaped;
+  for (int k = 0; k < count; ++k) {
+    const auto& [why, cause] = escapes[static_cast<size_t>(k)];
+    if (why == nullptr) continue;
+    const Body& body = w.bodies.items[w.movableSlots[static_cast<size_t>(k)]];
+    escaped.push_back(RemovedBody{body.id, body.name, body.xf.p, why, cause});
   }
   for (RemovedBody& report : escaped) remove(std::move(report));
   escaped.clear();

@@ -180,7 +180,10 @@ struct StepScratch {
   std::vector<int> islandParent, wakeStack;
   std::vector<uint8_t> islandHeld, islandAwake;
   std::vector<double> islandStillFor;
-  // Lost bodies (world_bounds.cpp): the candidates, their marks by body slot, a joined group.
+  // Lost bodies (world_bounds.cpp): by movable place, why a body leaves (null: it stays) and
+  // whether it is below the line; the candidates, their marks by body slot, a joined group.
+  std::vector<std::pair<const char*, RemovalCause>> escapes;
+  std::vector<uint8_t> belowLine;
   std::vector<int> lostCandidates;
   std::vector<char> lostCandidateMark;
   std::vector<int> lostGroup;
