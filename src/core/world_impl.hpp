@@ -181,18 +181,19 @@ struct StepScratch {
   std::vector<uint8_t> islandHeld, islandAwake;
   std::vector<double> islandStillFor;
   // Lost bodies (world_bounds.cpp): by movable place, why a body leaves (null: it stays) and
-  // whether it is below the line; the candidates, their marks by body slot, a joined group.
+  // how low it reaches; the candidates, their marks by body slot, a joined group.
   std::vector<std::pair<const char*, RemovalCause>> escapes;
-  std::vector<uint8_t> belowLine;
-  std::vector<int> lostCandidates;
+  std::vector<double> lostTops, kinematicBottoms;  // by movable place, by block
+  std::vector<int> lostCandidates, candidatesInComponent;
   std::vector<char> lostCandidateMark;
   std::vector<int> lostGroup;
 };
 
 /// Each body's joints with the body at their other end, in jointsOfBody's order, for every body
-/// in one array: the lost-body search walks all of a hanging grid's joints every step, and a list
-/// per body plus a jointBodies lookup per joint waited on memory at each (v3_joint_grid: 3.5 % of
-/// its step). Rebuilt at the first walk after the joints changed.
+/// in one array, and the bodies' jointed components (bodies that joints join, directly or not;
+/// a body without joints is one alone): the lost-body search walks a hanging grid's joints every
+/// step, and a list per body plus a jointBodies lookup per joint waited on memory at each
+/// (v3_joint_grid: 3.5 % of its step). Rebuilt at the first use after the joints changed.
 class JointNeighbours {
  public:
   struct End {
@@ -200,27 +201,20 @@ class JointNeighbours {
   };
   void invalidate() { valid_ = false; }
   void refresh(const std::vector<std::vector<int>>& jointsOfBody,
-               const std::vector<std::pair<int, int>>& jointBodies) {
-    if (valid_) return;
-    valid_ = true;
-    start_.assign(1, 0);
-    ends_.clear();
-    for (size_t slot = 0; slot < jointsOfBody.size(); ++slot) {
-      for (const int j : jointsOfBody[slot]) {
-        const auto [bodyA, bodyB] = jointBodies[static_cast<size_t>(j)];
-        ends_.push_back({j, bodyA == static_cast<int>(slot) ? bodyB : bodyA});
-      }
-      start_.push_back(static_cast<int>(ends_.size()));
-    }
-  }
+               const std::vector<std::pair<int, int>>& jointBodies);
   /// The joints of the body in `slot` (after refresh()).
   const End* begin(int slot) const { return ends_.data() + start_[static_cast<size_t>(slot)]; }
   const End* end(int slot) const { return ends_.data() + start_[static_cast<size_t>(slot) + 1]; }
+  /// The body's component, and how many bodies (slots, of any type) it has.
+  int componentOf(int slot) const { return component_[static_cast<size_t>(slot)]; }
+  int componentSize(int component) const { return componentSize_[static_cast<size_t>(component)]; }
+  int componentCount() const { return static_cast<int>(componentSize_.size()); }
 
  private:
   bool valid_ = false;
   std::vector<int> start_;  // by body slot, and one past the last
   std::vector<End> ends_;
+  std::vector<int> component_, componentSize_, stack_;
 };
 
 struct WorldImpl {

@@ -198,6 +198,37 @@ TEST(LostBodies, JointsToAnythingNotLostHoldABody) {
   EXPECT_EQ(world.lostBodyCount(), 10u);
 }
 
+TEST(LostBodies, ABodyThatIsNotLostHoldsEveryChainJointedToIt) {
+  // A beam resting across a 2 m static post, a chain of six 1 m links hanging from each end:
+  // the lower links are far below the post, the beam is not, and joints join them all (the
+  // search finds this from the joints' components, not by walking each chain every step).
+  World world;
+  addBox(world, "post", Vec2(0.0, -0.5), 2.0, 1.0, BodyType::Static);
+  const BodyId beam = addBox(world, "beam", Vec2(0.0, 0.25), 6.0, 0.5, BodyType::Dynamic, 50.0);
+  for (const double side : {-1.0, 1.0}) {
+    BodyId above = beam;
+    for (int i = 0; i < 6; ++i) {
+      const std::string name = std::string(side < 0.0 ? "left" : "right") + std::to_string(i);
+      const BodyId link =
+          addBox(world, name, Vec2(2.8 * side, -0.5 - i), 0.1, 1.0, BodyType::Dynamic, 0.5);
+      JointDef hinge;
+      hinge.bodyA = above;
+      hinge.bodyB = link;
+      hinge.anchor = Vec2(2.8 * side, -static_cast<double>(i));
+      ASSERT_TRUE(world.createJoint(hinge).valid());
+      above = link;
+    }
+  }
+  for (int i = 0; i < 200; ++i) world.step();
+  EXPECT_LT(world.body(world.findBody("left5")).center.y(), -4.0) << "the chains hang";
+  EXPECT_EQ(world.lostBodyCount(), 0u);
+
+  // Without the beam the two chains fall apart from each other, and each is lost whole.
+  ASSERT_TRUE(world.destroyBody(beam));
+  for (int i = 0; i < 300; ++i) world.step();
+  EXPECT_EQ(world.lostBodyCount(), 12u);
+}
+
 TEST(LostBodies, AKinematicPlatformBelowCanStillCatchIt) {
   Drop drop;
   // A platform 20 m below the ground, right under the box.
