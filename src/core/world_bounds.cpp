@@ -97,10 +97,9 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   floor.height = floor.deepest + deepestCorner(staticBounds, -floor.down);
 
   // Awake dynamic bodies only: a sleeping one rests on something, and static bodies cost
-  // nothing here. Each body read in parallel blocks (a scan over every body, a cache miss each),
-  // then the candidates listed in order.
-  // The lowest a kinematic body reaches is found on the way: one below the static ones may still
-  // catch a body.
+  // nothing here. Each body is read once, in parallel blocks (a cache miss each), for its depth
+  // and, if kinematic, for how low it reaches (one below the static ones may still catch a
+  // body); then the candidates are listed in order.
   std::vector<int>& candidates = scratch.lostCandidates;
   std::vector<double>& tops = scratch.lostTops;  // by movable place
   const int count = static_cast<int>(movableSlots.size());

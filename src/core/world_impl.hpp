@@ -193,7 +193,8 @@ struct StepScratch {
 /// in one array, and the bodies' jointed components (bodies that joints join, directly or not;
 /// a body without joints is one alone): the lost-body search walks a hanging grid's joints every
 /// step, and a list per body plus a jointBodies lookup per joint waited on memory at each
-/// (v3_joint_grid: 3.5 % of its step). Rebuilt at the first use after the joints changed.
+/// (v3_joint_grid: 3.5 % of its step). Rebuilt at the first use after the joints changed
+/// (refresh(), in world_bounds.cpp with its one user).
 class JointNeighbours {
  public:
   struct End {
