@@ -9,7 +9,6 @@
 // movableSlots: one pass over the contacts and joints links bodies, then each island is read at
 // its root. An island with an awake body wakes its sleepers (something touches them); islands
 // of sleepers only are left as they are.
-#include <algorithm>
 #include <limits>
 
 #include "world_impl.hpp"
@@ -85,14 +84,13 @@ void WorldImpl::updateSleep(double dt) {
     // Nothing may sleep, so no islands are needed. Bodies put to sleep before sleeping was
     // switched off wake up, and stillness counts from zero once it is switched back on. In
     // parallel blocks: a write to every body, each its own.
-    const int count = static_cast<int>(movableSlots.size());
-    stepWorkers.stage((count + kBodiesPerBlock - 1) / kBodiesPerBlock, [&](int block, int) {
-      const int end = std::min(count, (block + 1) * kBodiesPerBlock);
-      for (int k = block * kBodiesPerBlock; k < end; ++k) {
-        Body& body = bodies.items[movableSlots[static_cast<size_t>(k)]];
-        if (body.type == BodyType::Dynamic) wakeBody(body);
-      }
-    });
+    stepWorkers.forRanges(static_cast<int>(movableSlots.size()), kBodiesPerBlock,
+                          [&](int begin, int end, int) {
+                            for (int k = begin; k < end; ++k) {
+                              Body& body = bodies.items[movableSlots[static_cast<size_t>(k)]];
+                              if (body.type == BodyType::Dynamic) wakeBody(body);
+                            }
+                          });
     return;
   }
   const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;

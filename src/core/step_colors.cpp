@@ -49,22 +49,19 @@ void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<
   // entries waits on memory at each (two thirds of v3_many_pyramids' 1.2 ms colouring stage, on
   // one thread while the others waited). Then the colours, in contact order, on one thread.
   ends_.resize(contacts.size());
-  const int blocks =
-      static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
-  workers.stage(blocks, [&](int block, int) {
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
-    for (size_t i = first; i < last; ++i) {
-      const Contact& contact = contacts[i];
-      Ends& e = ends_[i];
-      e.a = e.b = -1;  // not solved, unless:
-      if (contact.manifold.pointCount == 0) continue;
-      const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
-      if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
-      if (dynamicA == dynamicB) continue;          // two members of one welded cluster
-      e = {dynamicA, dynamicB, startColor(contact.key)};
-    }
-  });
+  workers.forRanges(
+      static_cast<int>(contacts.size()), kContactsPerBlock, [&](int begin, int end, int) {
+        for (size_t i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
+          const Contact& contact = contacts[i];
+          Ends& e = ends_[i];
+          e.a = e.b = -1;  // not solved, unless:
+          if (contact.manifold.pointCount == 0) continue;
+          const int dynamicA = dynamicEntry(contact.bodyA), dynamicB = dynamicEntry(contact.bodyB);
+          if (dynamicA < 0 && dynamicB < 0) continue;  // asleep, or between bodies no impulse moves
+          if (dynamicA == dynamicB) continue;          // two members of one welded cluster
+          e = {dynamicA, dynamicB, startColor(contact.key)};
+        }
+      });
   for (size_t i = 0; i < contacts.size(); ++i) {
     const Ends& e = ends_[i];
     colorOfContact_[i] = -1;

@@ -35,7 +35,7 @@ class StepColors {
   int contactsOf(int color) const { return contactCount_[color]; }
 
  private:
-  static constexpr size_t kContactsPerBlock = 1024;
+  static constexpr int kContactsPerBlock = 1024;
   struct Ends {
     int a, b;   // the dynamic entries a contact's impulses move (-1: none); both -1: not solved
     int start;  // the colour its search starts at

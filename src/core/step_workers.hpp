@@ -9,6 +9,7 @@
 // of threads. A helper TBB never starts only leaves its blocks to the others.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 
@@ -33,6 +34,14 @@ class StepWorkers {
   /// Runs fn(block, worker) for every block in [0, blocks) and returns when all are done; worker
   /// is in [0, threads()). Outside a session, or on one thread, the blocks run in order.
   void stage(int blocks, const Block& fn);
+  /// A stage over [0, count) cut into blocks of `perBlock`: fn(begin, end, worker) for each.
+  template <class Fn>
+  void forRanges(int count, int perBlock, const Fn& fn) {
+    stage((count + perBlock - 1) / perBlock, [&](int block, int worker) {
+      const int begin = block * perBlock;
+      fn(begin, std::min(count, begin + perBlock), worker);
+    });
+  }
 
  private:
   struct Shared;  // the arena and the stage hand-over (step_workers.cpp)

@@ -103,13 +103,13 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   std::vector<int>& candidates = scratch.lostCandidates;
   std::vector<double>& tops = scratch.lostTops;  // by movable place
   const int count = static_cast<int>(movableSlots.size());
-  const int blocks = (count + kBodiesPerBlock - 1) / kBodiesPerBlock;
   tops.resize(movableSlots.size());
-  scratch.kinematicBottoms.assign(static_cast<size_t>(blocks), floor.deepest);
-  stepWorkers.stage(blocks, [&](int block, int) {
-    const int end = std::min(count, (block + 1) * kBodiesPerBlock);
-    double& kinematicBottom = scratch.kinematicBottoms[static_cast<size_t>(block)];
-    for (int k = block * kBodiesPerBlock; k < end; ++k) {
+  scratch.kinematicBottoms.assign((movableSlots.size() + kBodiesPerBlock - 1) / kBodiesPerBlock,
+                                  floor.deepest);
+  stepWorkers.forRanges(count, kBodiesPerBlock, [&](int begin, int end, int) {
+    double& kinematicBottom =
+        scratch.kinematicBottoms[static_cast<size_t>(begin / kBodiesPerBlock)];
+    for (int k = begin; k < end; ++k) {
       const int i = movableSlots[static_cast<size_t>(k)];
       const Body& body = bodies.items[i];
       double& top = tops[static_cast<size_t>(k)];
@@ -274,9 +274,8 @@ void World::removeEscapedBodies() {
   std::vector<std::pair<const char*, RemovalCause>>& escapes = w.scratch.escapes;
   const int count = static_cast<int>(w.movableSlots.size());
   escapes.resize(w.movableSlots.size());
-  w.stepWorkers.stage((count + kBodiesPerBlock - 1) / kBodiesPerBlock, [&](int block, int) {
-    const int end = std::min(count, (block + 1) * kBodiesPerBlock);
-    for (int k = block * kBodiesPerBlock; k < end; ++k) {
+  w.stepWorkers.forRanges(count, kBodiesPerBlock, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
       const Body& body = w.bodies.items[w.movableSlots[static_cast<size_t>(k)]];
       auto& [why, cause] = escapes[static_cast<size_t>(k)];
       why = body.awake ? escapeReason(body, &cause) : nullptr;

@@ -220,33 +220,31 @@ void WorldImpl::updateContacts() {
   enum : uint8_t { kKeep = 0, kDrop = 1, kWakeA = 2, kWakeB = 4 };
   std::vector<uint8_t>& contactFate = contactFates;
   contactFate.resize(contacts.size());
-  const int blocks =
-      static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
-  stepWorkers.stage(blocks, [&](int block, int) {
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
-    for (size_t i = first; i < last; ++i) {
-      prefetchPairAhead(i, last);
-      Contact& contact = contacts[i];
-      const Body& a = bodies.items[contact.bodyA];
-      const Body& b = bodies.items[contact.bodyB];
-      uint8_t fate = kKeep;
-      // Fat boxes can only have parted if one of them moved this step.
-      const bool moved = movedThisStep(contact.proxyA) || movedThisStep(contact.proxyB);
-      if (moved && !tree.fatAabb(contact.proxyA).overlaps(tree.fatAabb(contact.proxyB))) {
-        fate = kDrop;
-      } else if (isMoving(a) || isMoving(b)) {
-        // Two bodies that cannot move relative to each other keep last step's manifold.
-        updateContact(contact, a, b, def.speculativeDistance, def.timeStep, def.warmStarting);
-        // Something moving now touches a sleeper: it wakes before the solver runs.
-        if (contact.manifold.pointCount > 0) {
-          if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) fate |= kWakeB;
-          if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake) fate |= kWakeA;
+  stepWorkers.forRanges(
+      static_cast<int>(contacts.size()), kContactsPerBlock, [&](int begin, int end, int) {
+        const size_t last = static_cast<size_t>(end);
+        for (size_t i = static_cast<size_t>(begin); i < last; ++i) {
+          prefetchPairAhead(i, last);
+          Contact& contact = contacts[i];
+          const Body& a = bodies.items[contact.bodyA];
+          const Body& b = bodies.items[contact.bodyB];
+          uint8_t fate = kKeep;
+          // Fat boxes can only have parted if one of them moved this step.
+          const bool moved = movedThisStep(contact.proxyA) || movedThisStep(contact.proxyB);
+          if (moved && !tree.fatAabb(contact.proxyA).overlaps(tree.fatAabb(contact.proxyB))) {
+            fate = kDrop;
+          } else if (isMoving(a) || isMoving(b)) {
+            // Two bodies that cannot move relative to each other keep last step's manifold.
+            updateContact(contact, a, b, def.speculativeDistance, def.timeStep, def.warmStarting);
+            // Something moving now touches a sleeper: it wakes before the solver runs.
+            if (contact.manifold.pointCount > 0) {
+              if (isMoving(a) && b.type == BodyType::Dynamic && !b.awake) fate |= kWakeB;
+              if (isMoving(b) && a.type == BodyType::Dynamic && !a.awake) fate |= kWakeA;
+            }
+          }
+          contactFate[i] = fate;
         }
-      }
-      contactFate[i] = fate;
-    }
-  });
+      });
   // In order: drop what went, wake what was touched.
   size_t write = 0;
   for (size_t read = 0; read < contacts.size(); ++read) {
