@@ -176,9 +176,8 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
     bool held = false;
     for (size_t k = 0; k < group.size(); ++k) {
       const int slot = group[k];
-      for (const JointNeighbours::End* e = jointNeighbours.begin(slot);
-           e != jointNeighbours.end(slot); ++e) {
-        const int other = e->other;
+      for (const int* it = jointNeighbours.begin(slot); it != jointNeighbours.end(slot); ++it) {
+        const int other = *it;
         if (mark[other] == 0) held = true;
         if (mark[other] == 1) {
           mark[other] = 2;
@@ -223,13 +222,13 @@ void JointNeighbours::refresh(const std::vector<std::vector<int>>& jointsOfBody,
   if (valid_) return;
   valid_ = true;
   start_.assign(1, 0);
-  ends_.clear();
+  others_.clear();
   for (size_t slot = 0; slot < jointsOfBody.size(); ++slot) {
     for (const int j : jointsOfBody[slot]) {
       const auto [bodyA, bodyB] = jointBodies[static_cast<size_t>(j)];
-      ends_.push_back({j, bodyA == static_cast<int>(slot) ? bodyB : bodyA});
+      others_.push_back(bodyA == static_cast<int>(slot) ? bodyB : bodyA);
     }
-    start_.push_back(static_cast<int>(ends_.size()));
+    start_.push_back(static_cast<int>(others_.size()));
   }
   component_.assign(jointsOfBody.size(), -1);
   componentSize_.clear();
@@ -243,10 +242,11 @@ void JointNeighbours::refresh(const std::vector<std::vector<int>>& jointsOfBody,
       const int slot = stack_.back();
       stack_.pop_back();
       ++componentSize_.back();
-      for (const End* e = begin(slot); e != end(slot); ++e) {
-        if (component_[static_cast<size_t>(e->other)] >= 0) continue;
-        component_[static_cast<size_t>(e->other)] = component;
-        stack_.push_back(e->other);
+      for (const int* it = begin(slot); it != end(slot); ++it) {
+        const int other = *it;
+        if (component_[static_cast<size_t>(other)] >= 0) continue;
+        component_[static_cast<size_t>(other)] = component;
+        stack_.push_back(other);
       }
     }
   }

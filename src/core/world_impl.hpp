@@ -189,7 +189,7 @@ struct StepScratch {
   std::vector<int> lostGroup;
 };
 
-/// Each body's joints with the body at their other end, in jointsOfBody's order, for every body
+/// The body at the other end of each of a body's joints, in jointsOfBody's order, for every body
 /// in one array, and the bodies' jointed components (bodies that joints join, directly or not;
 /// a body without joints is one alone): the lost-body search walks a hanging grid's joints every
 /// step, and a list per body plus a jointBodies lookup per joint waited on memory at each
@@ -197,15 +197,12 @@ struct StepScratch {
 /// (refresh(), in world_bounds.cpp with its one user).
 class JointNeighbours {
  public:
-  struct End {
-    int joint, other;
-  };
   void invalidate() { valid_ = false; }
   void refresh(const std::vector<std::vector<int>>& jointsOfBody,
                const std::vector<std::pair<int, int>>& jointBodies);
-  /// The joints of the body in `slot` (after refresh()).
-  const End* begin(int slot) const { return ends_.data() + start_[static_cast<size_t>(slot)]; }
-  const End* end(int slot) const { return ends_.data() + start_[static_cast<size_t>(slot) + 1]; }
+  /// The other ends of the joints of the body in `slot` (after refresh()).
+  const int* begin(int slot) const { return others_.data() + start_[static_cast<size_t>(slot)]; }
+  const int* end(int slot) const { return others_.data() + start_[static_cast<size_t>(slot) + 1]; }
   /// The body's component, and how many bodies (slots, of any type) it has.
   int componentOf(int slot) const { return component_[static_cast<size_t>(slot)]; }
   int componentSize(int component) const { return componentSize_[static_cast<size_t>(component)]; }
@@ -214,7 +211,7 @@ class JointNeighbours {
  private:
   bool valid_ = false;
   std::vector<int> start_;  // by body slot, and one past the last
-  std::vector<End> ends_;
+  std::vector<int> others_;
   std::vector<int> component_, componentSize_, stack_;
 };
 
