@@ -63,15 +63,14 @@ void WorldImpl::keepOutOfStatic() {
   const StageClock clock(stage(&StepProfile::continuous));
   // The deep ones first, found in parallel blocks of contacts (nothing moves yet), then by body
   // (in slot order, then contact order: deterministic).
-  const int blocks =
-      static_cast<int>((contacts.size() + kContactsPerBlock - 1) / kContactsPerBlock);
-  scratch.deepStaticOfBlock.resize(static_cast<size_t>(blocks));
-  stepWorkers.stage(blocks, [&](int block, int) {
-    std::vector<DeepStatic>& found = scratch.deepStaticOfBlock[static_cast<size_t>(block)].value;
+  const int count = static_cast<int>(contacts.size());
+  scratch.deepStaticOfBlock.resize(static_cast<size_t>(count + kContactsPerBlock - 1) /
+                                   kContactsPerBlock);
+  stepWorkers.forRanges(count, kContactsPerBlock, [&](int begin, int end, int) {
+    std::vector<DeepStatic>& found =
+        scratch.deepStaticOfBlock[static_cast<size_t>(begin / kContactsPerBlock)].value;
     found.clear();
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    const size_t last = std::min(contacts.size(), first + kContactsPerBlock);
-    for (size_t i = first; i < last; ++i) {
+    for (size_t i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
       const Contact& contact = contacts[i];
       // Static is told by movableIndex (a contact's bodies are alive): most contacts of a pile
       // are between two dynamic bodies, and are passed over without reading the bodies.

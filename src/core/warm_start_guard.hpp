@@ -19,6 +19,7 @@
 
 #include "contact.hpp"
 #include "joint.hpp"
+#include "step_workers.hpp"
 
 namespace impulse2d {
 
@@ -32,11 +33,11 @@ class WarmStartGuard {
   /// step's or the last step's): close enough to weigh an energy, and no joint is prepared twice.
   /// `colorStart`, when given, cuts `joints` into colours, [colorStart[c], colorStart[c + 1]),
   /// whose joints share no row, the last of them the overflow; a colour's trial then runs in
-  /// blocks through forEachBlock(blocks, fn(block)), which may run them at once.
-  template <class RowOf, class View, class PrefetchBody, class ForEachBlock>
+  /// blocks on `workers`, which may run them at once.
+  template <class RowOf, class View, class PrefetchBody>
   void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows, RowOf rowOf,
            View view, PrefetchBody prefetchBody, const std::vector<int>* colorStart,
-           const ForEachBlock& forEachBlock, double gravityStep) {
+           StepWorkers* workers, double gravityStep) {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();
@@ -116,14 +117,11 @@ class WarmStartGuard {
     };
     const size_t colors = colorStart != nullptr ? colorStart->size() - 2 : 0;
     for (size_t color = 0; color < colors; ++color) {
-      const size_t first = static_cast<size_t>((*colorStart)[color]);
-      const size_t last = static_cast<size_t>((*colorStart)[color + 1]);
-      const int blocks =
-          static_cast<int>((last - first + kTrialJointsPerBlock - 1) / kTrialJointsPerBlock);
-      forEachBlock(blocks, [&](int block) {
-        const size_t begin = first + static_cast<size_t>(block) * kTrialJointsPerBlock;
-        trialOf(begin, std::min(last, begin + kTrialJointsPerBlock));
-      });
+      const int first = (*colorStart)[color];
+      workers->forRanges(
+          (*colorStart)[color + 1] - first, kTrialJointsPerBlock, [&](int begin, int end, int) {
+            trialOf(static_cast<size_t>(first + begin), static_cast<size_t>(first + end));
+          });
     }
     trialOf(colors > 0 ? static_cast<size_t>((*colorStart)[colors]) : 0, joints.size());
     for (const GuardedContact& g : guardedContacts_) {
@@ -172,7 +170,7 @@ class WarmStartGuard {
   // `lines` of joint k + 8 and the bodies of joint k + 4 (whose line arrived by then) are asked
   // for ahead; hints only.
   static constexpr int kJointLines = 4;  // what a warm start reads (world_substeps.cpp)
-  static constexpr size_t kTrialJointsPerBlock = 256;
+  static constexpr int kTrialJointsPerBlock = 256;
   template <class PrefetchBody>
   static void prefetchAhead(const std::vector<Joint*>& joints, size_t k, int lines,
                             const PrefetchBody& prefetchBody, size_t end) {

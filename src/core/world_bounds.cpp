@@ -101,7 +101,7 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   // and, if kinematic, for how low it reaches (one below the static ones may still catch a
   // body); then the candidates are listed in order.
   std::vector<int>& candidates = scratch.lostCandidates;
-  std::vector<double>& tops = scratch.lostTops;  // by movable place
+  std::vector<double>& tops = scratch.lostTops;  // by movable place, then by candidate
   const int count = static_cast<int>(movableSlots.size());
   tops.resize(movableSlots.size());
   scratch.kinematicBottoms.assign((movableSlots.size() + kBodiesPerBlock - 1) / kBodiesPerBlock,
@@ -127,7 +127,9 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   });
   candidates.clear();
   for (int k = 0; k < count; ++k) {
-    if (tops[static_cast<size_t>(k)] > floor.deepest + floor.height) {
+    const double top = tops[static_cast<size_t>(k)];
+    if (top > floor.deepest + floor.height) {
+      tops[candidates.size()] = top;  // never ahead of k
       candidates.push_back(movableSlots[static_cast<size_t>(k)]);
     }
   }
@@ -137,10 +139,9 @@ void WorldImpl::findLostBodies(std::vector<RemovedBody>* removeLost) {
   // 0: not a candidate, 1: a candidate, 2: a candidate already grouped (or known held).
   std::vector<char>& mark = scratch.lostCandidateMark;
   mark.assign(bodies.items.size(), 0);
-  size_t place = 0;  // candidates are in movable order
-  for (const int slot : candidates) {
-    while (movableSlots[place] != slot) ++place;
-    const bool below = tops[place] > floorLine + floor.height;
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    const int slot = candidates[c];
+    const bool below = tops[c] > floorLine + floor.height;
     mark[slot] = below ? 1 : 0;
     if (!below) bookkeeping[slot].lost = false;
   }

@@ -334,7 +334,7 @@ void WorldImpl::solve(double dt) {
         const int entry = solverBodies.movingEntryOf(slot);
         return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
       },
-      [&](int slot) { return solverBodies.view(slot); }, nullptr, nullptr, [](int, const auto&) {},
+      [&](int slot) { return solverBodies.view(slot); }, nullptr, nullptr, nullptr,
       def.gravity.norm() * dt);
   contactSolver.prepare(contacts, solverBodies, def, dt);
   laps.lap(&StepProfile::prepare);

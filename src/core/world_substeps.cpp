@@ -218,9 +218,8 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
   };
   for (int color = 0; color < colors; ++color) {
     const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
-    stepWorkers.stage(blocksOf(end - first, kBundlesPerBlock), [&](int block, int worker) {
-      const int begin = first + block * kBundlesPerBlock;
-      bundleOp(sink(worker), begin, std::min(end, begin + kBundlesPerBlock), false, worker);
+    stepWorkers.forRanges(end - first, kBundlesPerBlock, [&](int begin, int last, int worker) {
+      bundleOp(sink(worker), first + begin, first + last, false, worker);
     });
   }
   // The overflow: one after the other, on this thread.
@@ -248,10 +247,8 @@ void WorldImpl::solveSubsteps(double dt) {
   // The joint lanes' bundles [begin, end) in blocks on the threads: each lane is its own joint's.
   const auto overLaneBundles = [&](const auto& op) {
     const int count = jointLanes.bundleCount();
-    stepWorkers.stage(blocksOf(count, kJointBundlesPerCopyBlock), [&](int block, int) {
-      const int begin = block * kJointBundlesPerCopyBlock;
-      op(begin, std::min(count, begin + kJointBundlesPerCopyBlock));
-    });
+    stepWorkers.forRanges(count, kJointBundlesPerCopyBlock,
+                          [&](int begin, int end, int) { op(begin, end); });
   };
   if (jointLanesFilled) {
     jointLanes.layOut(solverJoints, jointStart, stepColors.colorCount());
@@ -380,9 +377,8 @@ void WorldImpl::colorConstraints() {
   const std::vector<int>& order = heldJointOrder;
   const int count = static_cast<int>(order.size());
   solverJoints.resize(static_cast<size_t>(count));
-  stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
-    const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
-    for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
+  stepWorkers.forRanges(count, kJointsPerCopyBlock, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
       if (k + 4 < end) {  // a colour's joints lie every few slots apart
         prefetchWholeJoint<false>(joints.items[order[k + 4]]);
       }
@@ -395,9 +391,8 @@ void WorldImpl::syncJoints() {
   if (heldJointOrder.empty()) return;
   heldJointOrder.clear();
   const int count = static_cast<int>(solverJoints.size());
-  stepWorkers.stage(blocksOf(count, kJointsPerCopyBlock), [&](int block, int) {
-    const int end = std::min(count, (block + 1) * kJointsPerCopyBlock);
-    for (int k = block * kJointsPerCopyBlock; k < end; ++k) {
+  stepWorkers.forRanges(count, kJointsPerCopyBlock, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
       if (k + 4 < end) {  // the slot written four joints on
         prefetchWholeJoint<true>(joints.items[solverJoints[static_cast<size_t>(k + 4)].id.index]);
       }
@@ -431,29 +426,22 @@ void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
       scratch.guardedJoints, contacts, sb.dynamicCount(),
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
       [&](int slot) { return sb.view(slot); }, [&](int slot) { sb.prefetchView(slot, true); },
-      &jointStart,
-      [&](int blocks, const auto& fn) { stepWorkers.stage(blocks, [&](int b, int) { fn(b); }); },
-      def.gravity.norm() * dt);
-  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
-  stepWorkers.stage(contactBlocks, [&](int block, int) {
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    contactBundles.fill(contacts, first, std::min(contacts.size(), first + kContactsPerBlock), sb,
-                        bodies.items, substeps);
-  });
-  const int fillBlocks = blocksOf(contactBundles.bundleCount(), 8 * kBundlesPerBlock);
-  stepWorkers.stage(fillBlocks, [&](int block, int) {
-    const int begin = block * 8 * kBundlesPerBlock;
-    contactBundles.finishFill(
-        begin, std::min(contactBundles.bundleCount(), begin + 8 * kBundlesPerBlock), sb, soft);
-  });
+      &jointStart, &stepWorkers, def.gravity.norm() * dt);
+  stepWorkers.forRanges(static_cast<int>(contacts.size()), kContactsPerBlock,
+                        [&](int begin, int end, int) {
+                          contactBundles.fill(contacts, static_cast<size_t>(begin),
+                                              static_cast<size_t>(end), sb, bodies.items, substeps);
+                        });
+  stepWorkers.forRanges(
+      contactBundles.bundleCount(), 8 * kBundlesPerBlock,
+      [&](int begin, int end, int) { contactBundles.finishFill(begin, end, sb, soft); });
 }
 
 void WorldImpl::storeBundles() {
-  const int contactBlocks = blocksOf(static_cast<int>(contacts.size()), kContactsPerBlock);
-  stepWorkers.stage(contactBlocks, [&](int block, int) {
-    const size_t first = static_cast<size_t>(block) * kContactsPerBlock;
-    contactBundles.store(contacts, first, std::min(contacts.size(), first + kContactsPerBlock));
-  });
+  stepWorkers.forRanges(
+      static_cast<int>(contacts.size()), kContactsPerBlock, [&](int begin, int end, int) {
+        contactBundles.store(contacts, static_cast<size_t>(begin), static_cast<size_t>(end));
+      });
 }
 
 void WorldImpl::findFastSubstepBodies() {
@@ -466,9 +454,8 @@ void WorldImpl::findFastSubstepBodies() {
   const int count = sb.dynamicCount();
   std::vector<uint8_t>& mayBeFast = scratch.mayBeFast;
   mayBeFast.resize(static_cast<size_t>(count));
-  stepWorkers.stage(blocksOf(count, kBodiesPerBlock), [&](int block, int) {
-    const int end = std::min(count, (block + 1) * kBodiesPerBlock);
-    for (int e = block * kBodiesPerBlock; e < end; ++e) {
+  stepWorkers.forRanges(count, kBodiesPerBlock, [&](int begin, int end, int) {
+    for (int e = begin; e < end; ++e) {
       const auto [first, last] = sb.clusterRows().ofRow(e);
       const BodyState& s = sb.state(e);
       mayBeFast[static_cast<size_t>(e)] =
