@@ -406,9 +406,15 @@ void RunJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int
   }
 }
 
-void RunJointLane(const JointLaneArgs& args, JointLanePass pass, int lane) {
+int RunJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count) {
   const hn::CappedTag<double, 1> d1;
-  group(d1, args, pass, args.bundles[lane / kJointLanes], static_cast<size_t>(lane % kJointLanes));
+  for (int i = 0; i < count; ++i) {
+    const int lane = firstLane + i;
+    JointBundle& j = args.bundles[lane / kJointLanes];
+    group(d1, args, pass, j, static_cast<size_t>(lane % kJointLanes));
+    if (warmsStart(pass) && j.scalarLanes != 0) return i + 1;  // the scalar path's turn first
+  }
+  return count;
 }
 
 }  // namespace HWY_NAMESPACE
@@ -419,14 +425,14 @@ HWY_AFTER_NAMESPACE();
 namespace impulse2d {
 
 HWY_EXPORT(RunJointLanes);
-HWY_EXPORT(RunJointLane);
+HWY_EXPORT(RunJointOverflow);
 HWY_EXPORT(PositionJointLanes);
 
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
   HWY_DYNAMIC_DISPATCH(RunJointLanes)(args, pass, begin, end);
 }
-void runJointLane(const JointLaneArgs& args, JointLanePass pass, int lane) {
-  HWY_DYNAMIC_DISPATCH(RunJointLane)(args, pass, lane);
+int runJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count) {
+  return HWY_DYNAMIC_DISPATCH(RunJointOverflow)(args, pass, firstLane, count);
 }
 void positionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
                         double* widest, bool* within) {

@@ -191,21 +191,27 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
                             }
                           });
       }
-      // The overflow, one joint after the other: in a lane of its own where it has one.
+      // The overflow, one joint after the other: in a lane of its own where it has one. The
+      // lanes of consecutive joints are consecutive: a run of them goes to the kernels at once.
       JointLaneArgs args = jointLaneArgs;
       args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(0) * kStateDoubles);
-      for (int k = jointStart[colors]; k < jointStart[colors + 1]; ++k) {
-        const int lane = jointLanesFilled ? jointLanes.overflowLane(k - jointStart[colors]) : -1;
+      const int first = jointStart[colors], end = jointStart[colors + 1];
+      for (int k = first; k < end;) {
+        const int lane = jointLanesFilled ? jointLanes.overflowLane(k - first) : -1;
         if (lane < 0) {
-          onJoint<access>(k, 0, jointOp);
+          onJoint<access>(k++, 0, jointOp);
           continue;
         }
         if constexpr (access == JointAccess::WritePoses) {
           positionLanes(args, lane / kJointLanes, lane, 0, jointOp);
+          ++k;
           continue;
         }
-        runJointLane(args, lanePass, lane);
-        const int bundle = lane / kJointLanes;
+        int run = 1;
+        while (k + run < end && jointLanes.overflowLane(k + run - first) == lane + run) ++run;
+        const int ran = runJointOverflow(args, lanePass, lane, run);
+        k += ran;
+        const int bundle = (lane + ran - 1) / kJointLanes;
         if (warmsStart(lanePass)) warmStartScalarLanes(bundle, bundle + 1);
       }
     }

@@ -6,6 +6,7 @@
 #include <impulse2d/simd.hpp>
 #include <impulse2d/world.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -75,11 +76,12 @@ TEST_P(WideSolver, AnyNumberOfThreadsGivesTheSameState) {
 // grid gives the state the scalar path gave before there were lanes (hashes from commit 1dcbb19):
 // as it settles, and kicked at 800 m/s twice, where the warm start of the joints around the
 // kicked bodies breaks the motion limits and goes back to the scalar path.
-uint64_t kickedGrid(bool kick, int threads) {
+uint64_t kicked(const std::string& file, const std::vector<std::string>& kickedBodies, bool kick,
+                int threads) {
   Scene scene;
   std::string error;
-  EXPECT_TRUE(loadSceneFile(std::string(IMPULSE2D_SOURCE_DIR) + "/test/scenes/joint_grid.yaml",
-                            &scene, &error))
+  EXPECT_TRUE(
+      loadSceneFile(std::string(IMPULSE2D_SOURCE_DIR) + "/test/scenes/" + file, &scene, &error))
       << error;
   scene.world.solver = SolverType::SubstepNgs;
   scene.world.threads = threads;
@@ -89,18 +91,37 @@ uint64_t kickedGrid(bool kick, int threads) {
     if (kick && (i == 60 || i == 130)) {
       for (const BodyId id : world.bodies()) {
         const std::string& name = world.body(id).name;
-        if (name == "g6_7" || name == "g2_11") world.setVelocity(id, Vec2(800.0, -500.0), 300.0);
+        if (std::find(kickedBodies.begin(), kickedBodies.end(), name) != kickedBodies.end()) {
+          world.setVelocity(id, Vec2(800.0, -500.0), 300.0);
+        }
       }
     }
     world.step();
   }
   return world.hash();
 }
+uint64_t kickedGrid(bool kick, int threads) {
+  return kicked("joint_grid.yaml", {"g6_7", "g2_11"}, kick, threads);
+}
 
 TEST(WideSolver, JointsInLanesGiveTheScalarPathsState) {
   for (const int threads : {1, 2}) {
     EXPECT_EQ(kickedGrid(false, threads), 0x8e18a9b24c49578bull) << threads << " threads";
     EXPECT_EQ(kickedGrid(true, threads), 0x2d3db45bf1770620ull) << threads << " threads";
+  }
+}
+
+// A chain's joints are all in the overflow, solved one lane after the other; where a kicked
+// body's warm start goes back to the scalar path, that joint's scalar warm start comes before the
+// next joint's lane (runJointOverflow stops there). Hashes from commit 455030e, which went back to
+// the world after every lane.
+TEST(WideSolver, AChainsLanesGiveWayToTheScalarPathInOrder) {
+  for (const int threads : {1, 2}) {
+    EXPECT_EQ(kicked("bridge20.yaml", {"plank_5", "plank_12"}, true, threads),
+              0x31f5aa844608b042ull)
+        << threads << " threads";
+    EXPECT_EQ(kicked("chain40.yaml", {"link_9", "link_30"}, true, threads), 0xb9e626535f3c5bdcull)
+        << threads << " threads";
   }
 }
 
