@@ -406,6 +406,19 @@ void RunJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int
   }
 }
 
+void PrepareJointLanes(const JointLaneArgs& args, int begin, int end) {
+  const hn::CappedTag<double, kJointLanes> d;
+  const size_t n = hn::Lanes(d);
+  for (int k = begin; k < end; ++k) {
+    JointBundle& j = args.bundles[k];
+    for (size_t lane = 0; lane < static_cast<size_t>(j.laneCount); lane += n) {
+      const auto a = loadBodies(d, args.states, j.offsetA + lane);
+      const auto b = loadBodies(d, args.states, j.offsetB + lane);
+      prepare(d, j, lane, args.h, a, b);
+    }
+  }
+}
+
 int RunJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count) {
   const hn::CappedTag<double, 1> d1;
   for (int i = 0; i < count; ++i) {
@@ -426,10 +439,14 @@ namespace impulse2d {
 
 HWY_EXPORT(RunJointLanes);
 HWY_EXPORT(RunJointOverflow);
+HWY_EXPORT(PrepareJointLanes);
 HWY_EXPORT(PositionJointLanes);
 
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
   HWY_DYNAMIC_DISPATCH(RunJointLanes)(args, pass, begin, end);
+}
+void prepareJointLanes(const JointLaneArgs& args, int begin, int end) {
+  HWY_DYNAMIC_DISPATCH(PrepareJointLanes)(args, begin, end);
 }
 int runJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count) {
   return HWY_DYNAMIC_DISPATCH(RunJointOverflow)(args, pass, firstLane, count);

@@ -86,10 +86,14 @@ struct JointLaneArgs {
 
 /// The kernels (joint_kernels.cpp) over the bundles [begin, end), whose lanes share no body.
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end);
-/// The same for `count` consecutive lanes from firstLane (bundle * kJointLanes + lane), one at a
-/// time in order, as the overflow's joints are solved. A warm start stops after a lane it left to
-/// the scalar path (JointBundle::scalarLanes), whose turn comes before the next joint's. Returns
-/// how many lanes it ran.
+/// prepareRevolute (the arms, K^-1, the limits' targets) for every lane of the bundles [begin,
+/// end), whose lanes may share bodies: a prepare reads only the poses, which a velocity pass does
+/// not change.
+void prepareJointLanes(const JointLaneArgs& args, int begin, int end);
+/// The same as runJointLanes for `count` consecutive lanes from firstLane (bundle * kJointLanes +
+/// lane), one at a time in order, as the overflow's joints are solved. A warm start stops after a
+/// lane it left to the scalar path (JointBundle::scalarLanes), whose turn comes before the next
+/// joint's. Returns how many lanes it ran.
 int runJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count);
 /// One NGS position pass (solveRevolutePosition) over the bundles [begin, end), none with limits,
 /// or over one lane when `lane` >= 0 (then begin and end are not read). Raises *widest to the
