@@ -370,21 +370,37 @@ HWY_INLINE V<D> positionGroup(D d, const JointLaneArgs& args, const JointBundle&
   return error;
 }
 
-void PositionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
+// Raises *widest to the largest of the first `count` errors and clears *within where one exceeds
+// linearSlop.
+template <class D>
+HWY_INLINE void noteErrors(D d, const V<D>& errors, int count, double linearSlop, double* widest,
+                           bool* within) {
+  HWY_ALIGN double lanes[kJointLanes];
+  hn::Store(errors, d, lanes);
+  for (int i = 0; i < count; ++i) {
+    if (*widest < lanes[i]) *widest = lanes[i];  // std::max({widest, error, 0})
+    if (!(lanes[i] <= linearSlop)) *within = false;
+  }
+}
+
+int PositionJointOverflow(const JointLaneArgs& args, int firstLane, int count, double linearSlop,
+                          double* widest, bool* within) {
+  const hn::CappedTag<double, 1> d1;
+  for (int i = 0; i < count; ++i) {
+    const int lane = firstLane + i;
+    const JointBundle& j = args.bundles[lane / kJointLanes];
+    if (j.anyLimit) return i;  // the limits' position rows are the scalar path's
+    noteErrors(d1, positionGroup(d1, args, j, static_cast<size_t>(lane % kJointLanes)), 1,
+               linearSlop, widest, within);
+  }
+  return count;
+}
+
+void PositionJointLanes(const JointLaneArgs& args, int begin, int end, double linearSlop,
                         double* widest, bool* within) {
   auto note = [&](auto d, const auto& errors, int count) {
-    HWY_ALIGN double lanes[kJointLanes];
-    hn::Store(errors, d, lanes);
-    for (int i = 0; i < count; ++i) {
-      if (*widest < lanes[i]) *widest = lanes[i];  // std::max({widest, error, 0})
-      if (!(lanes[i] <= linearSlop)) *within = false;
-    }
+    noteErrors(d, errors, count, linearSlop, widest, within);
   };
-  if (lane >= 0) {
-    const hn::CappedTag<double, 1> d1;
-    note(d1, positionGroup(d1, args, args.bundles[lane / kJointLanes], lane % kJointLanes), 1);
-    return;
-  }
   const hn::CappedTag<double, kJointLanes> d;
   const size_t n = hn::Lanes(d);
   for (int k = begin; k < end; ++k) {
@@ -441,6 +457,7 @@ HWY_EXPORT(RunJointLanes);
 HWY_EXPORT(RunJointOverflow);
 HWY_EXPORT(PrepareJointLanes);
 HWY_EXPORT(PositionJointLanes);
+HWY_EXPORT(PositionJointOverflow);
 
 void runJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
   HWY_DYNAMIC_DISPATCH(RunJointLanes)(args, pass, begin, end);
@@ -451,9 +468,14 @@ void prepareJointLanes(const JointLaneArgs& args, int begin, int end) {
 int runJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count) {
   return HWY_DYNAMIC_DISPATCH(RunJointOverflow)(args, pass, firstLane, count);
 }
-void positionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
+void positionJointLanes(const JointLaneArgs& args, int begin, int end, double linearSlop,
                         double* widest, bool* within) {
-  HWY_DYNAMIC_DISPATCH(PositionJointLanes)(args, begin, end, lane, linearSlop, widest, within);
+  HWY_DYNAMIC_DISPATCH(PositionJointLanes)(args, begin, end, linearSlop, widest, within);
+}
+int positionJointOverflow(const JointLaneArgs& args, int firstLane, int count, double linearSlop,
+                          double* widest, bool* within) {
+  return HWY_DYNAMIC_DISPATCH(PositionJointOverflow)(args, firstLane, count, linearSlop, widest,
+                                                     within);
 }
 
 }  // namespace impulse2d

@@ -95,11 +95,15 @@ void prepareJointLanes(const JointLaneArgs& args, int begin, int end);
 /// lane it left to the scalar path (JointBundle::scalarLanes), whose turn comes before the next
 /// joint's. Returns how many lanes it ran.
 int runJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count);
-/// One NGS position pass (solveRevolutePosition) over the bundles [begin, end), none with limits,
-/// or over one lane when `lane` >= 0 (then begin and end are not read). Raises *widest to the
-/// largest joint error met (m), and clears *within where one exceeds `linearSlop`.
-void positionJointLanes(const JointLaneArgs& args, int begin, int end, int lane, double linearSlop,
+/// One NGS position pass (solveRevolutePosition) over the bundles [begin, end), none with limits.
+/// Raises *widest to the largest joint error met (m), and clears *within where one exceeds
+/// `linearSlop`.
+void positionJointLanes(const JointLaneArgs& args, int begin, int end, double linearSlop,
                         double* widest, bool* within);
+/// The same for `count` consecutive overflow lanes from firstLane, one at a time in order; stops
+/// before a lane whose bundle has limits (the scalar path's). Returns how many lanes it ran.
+int positionJointOverflow(const JointLaneArgs& args, int firstLane, int count, double linearSlop,
+                          double* widest, bool* within);
 
 class JointLanes {
  public:

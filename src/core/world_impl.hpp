@@ -397,12 +397,11 @@ struct WorldImpl {
   /// other joints jointOp.
   template <JointAccess access, class JointOp>
   void overLaneColor(int color, const JointOp& jointOp, JointLanePass lanePass);
-  /// A position pass over a joint bundle (or one lane of it, for lane >= 0): in the kernels, or
-  /// jointOp on each lane's joint where the bundle has limits. The errors go to the worker's
-  /// scratch.workerVerdicts, as correctSubstepPositions' jointOp does.
+  /// A position pass over a colour's joint bundle: in the kernels, or jointOp on each lane's
+  /// joint where the bundle has limits. The errors go to the worker's scratch.workerVerdicts, as
+  /// correctSubstepPositions' jointOp does.
   template <class JointOp>
-  void positionLanes(const JointLaneArgs& args, int bundle, int lane, int worker,
-                     const JointOp& jointOp);
+  void positionLanes(const JointLaneArgs& args, int bundle, int worker, const JointOp& jointOp);
   /// The lanes of bundles [begin, end) whose warm start the kernels left to the scalar path.
   void warmStartScalarLanes(int begin, int end);
   // solveSubsteps' stages, in order.

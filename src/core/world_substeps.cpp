@@ -120,19 +120,18 @@ void WorldImpl::warmStartScalarLanes(int begin, int end) {
 }
 
 template <class JointOp>
-void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int lane, int worker,
+void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int worker,
                               const JointOp& jointOp) {
   const JointBundle& j = jointLanes.bundle(bundle);
-  if (j.anyLimit) {  // the limits' position rows stay scalar: the lane, or every lane
-    const int first = lane >= 0 ? lane % kJointLanes : 0;
-    const int last = lane >= 0 ? first + 1 : j.laneCount;
-    for (int i = first; i < last; ++i)
+  if (j.anyLimit) {  // the limits' position rows stay scalar
+    for (int i = 0; i < j.laneCount; ++i) {
       onJoint<JointAccess::WritePoses>(j.joint[i], worker, jointOp);
+    }
     return;
   }
   StepScratch::PassVerdict& verdict = scratch.workerVerdicts[static_cast<size_t>(worker)].value;
   bool within = true;
-  positionJointLanes(args, bundle, bundle + 1, lane, def.linearSlop, &verdict.widest, &within);
+  positionJointLanes(args, bundle, bundle + 1, def.linearSlop, &verdict.widest, &within);
   if (!within) verdict.jointsOk = false;
 }
 
@@ -151,7 +150,7 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
       const int from = firstBundle + block * kJointBundlesPerBlock;
       const int to = std::min(firstBundle + bundles, from + kJointBundlesPerBlock);
       if constexpr (access == JointAccess::WritePoses) {
-        for (int k = from; k < to; ++k) positionLanes(args, k, -1, worker, jointOp);
+        for (int k = from; k < to; ++k) positionLanes(args, k, worker, jointOp);
       } else {
         runJointLanes(args, lanePass, from, to);
         if (warmsStart(lanePass)) warmStartScalarLanes(from, to);
@@ -210,13 +209,18 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
           onJoint<access>(k++, 0, jointOp);
           continue;
         }
-        if constexpr (access == JointAccess::WritePoses) {
-          positionLanes(args, lane / kJointLanes, lane, 0, jointOp);
-          ++k;
-          continue;
-        }
         int run = 1;
         while (k + run < end && jointLanes.overflowLane(k + run - first) == lane + run) ++run;
+        if constexpr (access == JointAccess::WritePoses) {
+          StepScratch::PassVerdict& verdict = scratch.workerVerdicts[0].value;
+          bool within = true;
+          const int ran =
+              positionJointOverflow(args, lane, run, def.linearSlop, &verdict.widest, &within);
+          if (!within) verdict.jointsOk = false;
+          k += ran;
+          if (ran == 0) onJoint<access>(k++, 0, jointOp);  // its bundle has limits: scalar
+          continue;
+        }
         const int ran = runJointOverflow(args, overflowPass, lane, run);
         k += ran;
         const int bundle = (lane + ran - 1) / kJointLanes;
