@@ -194,6 +194,11 @@ HWY_INLINE void warmStart(D d, const JointLaneArgs& args, JointBundle& j, size_t
                    hn::Le(hn::Abs(hn::Sub(after.w, before.w)), halfMaxTurnRate));
   };
   const auto ok = hn::And(within(*a, a1), within(*b, b1));
+  if (limited && hn::AllTrue(d, ok)) {  // nearly always: a branch the next joint need not wait on
+    *a = a1;
+    *b = b1;
+    return;
+  }
   HWY_ALIGN double okLanes[kJointLanes];
   hn::Store(hn::IfThenElseZero(ok, hn::Set(d, 1.0)), d, okLanes);
   for (size_t i = 0; i < hn::Lanes(d); ++i) {
