@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "body_lanes-inl.h"
@@ -189,6 +190,17 @@ HWY_INLINE void solveBlock(D d, const Block<D>& k, const V<D>& v1, const V<D>& v
   const V<D> both1 = hn::Sub(old1, hn::Add(hn::Mul(k.inverse11, v1), hn::Mul(k.inverse12, v2)));
   const V<D> both2 = hn::Sub(old2, hn::Add(hn::Mul(k.inverse12, v1), hn::Mul(k.inverse22, v2)));
   const auto both = hn::And(hn::Ge(both1, zero), hn::Ge(both2, zero));
+  // One lane at a time (the overflow, one contact after the other), the common case of a resting
+  // pair is taken on a branch, so the next contact need not wait for the other cases' tests
+  // (stack20: a tenth of its step). Lanes side by side keep the selects: there a mispredicted
+  // branch costs more than the tests.
+  if constexpr (std::is_same_v<D, D1>) {
+    if (hn::AllTrue(d, both)) {
+      *x1 = both1;
+      *x2 = both2;
+      return;
+    }
+  }
   // Only the first: x2 = 0.
   const V<D> first = hn::Sub(old1, hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))));
   const V<D> w2 =
