@@ -7,6 +7,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <type_traits>
 
 #include "body_lanes-inl.h"
 #include "joint_lanes.hpp"
@@ -325,6 +326,14 @@ HWY_INLINE void moveAndStore(D d, const JointLaneArgs& args, const int32_t* offs
   storePoses(d, args.states, offset + lane, args.sinkOffset, body);
 }
 
+// Whether any lane of `mask` holds, where that matters: one lane at a time (the overflow, one
+// joint after the other), a test that nearly never holds is taken on a branch, so the next joint
+// need not wait for it; lanes side by side always take the select.
+template <class D, class M>
+HWY_INLINE bool mayNeed(D d, const M& mask) {
+  return !std::is_same_v<D, D1> || !hn::AllFalse(d, mask);
+}
+
 // solveRevolutePosition without limits, then applyJointCorrection: the gap between the anchors,
 // its correction K^-1 C (C at most kMaxLinearCorrection long), shrunk until neither body moves
 // more than kMaxLinearCorrection nor turns more than kMaxAngularCorrection; none where that is
@@ -345,9 +354,11 @@ HWY_INLINE V<D> positionGroup(D d, const JointLaneArgs& args, const JointBundle&
   const V<D> error = hn::Sqrt(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)));
   const V<D> maxLinear = hn::Set(d, kMaxLinearCorrection);
   const auto far = hn::Gt(error, maxLinear);
-  const V<D> shrink = hn::Div(maxLinear, error);
-  cx = hn::IfThenElse(far, hn::Mul(cx, shrink), cx);
-  cy = hn::IfThenElse(far, hn::Mul(cy, shrink), cy);
+  if (mayNeed(d, far)) {
+    const V<D> shrink = hn::Div(maxLinear, error);
+    cx = hn::IfThenElse(far, hn::Mul(cx, shrink), cx);
+    cy = hn::IfThenElse(far, hn::Mul(cy, shrink), cy);
+  }
   V<D> m00, m01, m11;
   invertPointMass(d, j, lane, rAx, rAy, rBx, rBy, &m00, &m01, &m11);
   const V<D> px = hn::Neg(hn::Add(hn::Mul(m00, cx), hn::Mul(m01, cy)));
@@ -361,17 +372,27 @@ HWY_INLINE V<D> positionGroup(D d, const JointLaneArgs& args, const JointBundle&
   const V<D> turned = maxOf<D>(hn::Abs(hn::Mul(iA, angularA)), hn::Abs(hn::Mul(iB, angularB)));
   const V<D> maxAngular = hn::Set(d, kMaxAngularCorrection);
   V<D> scale = hn::Set(d, 1.0);
-  scale = hn::IfThenElse(hn::Gt(moved, maxLinear), hn::Div(maxLinear, moved), scale);
-  scale = hn::IfThenElse(hn::Gt(hn::Mul(turned, scale), maxAngular), hn::Div(maxAngular, turned),
-                         scale);
+  const auto tooFar = hn::Gt(moved, maxLinear);
+  if (mayNeed(d, tooFar)) scale = hn::IfThenElse(tooFar, hn::Div(maxLinear, moved), scale);
+  const auto tooTurned = hn::Gt(hn::Mul(turned, scale), maxAngular);
+  if (mayNeed(d, tooTurned)) {
+    scale = hn::IfThenElse(tooTurned, hn::Div(maxAngular, turned), scale);
+  }
   const auto corrects = hn::IsFinite(hn::Add(moved, turned));
   const V<D> moveA = hn::Mul(scale, mA), moveB = hn::Mul(scale, mB);
-  moveAndStore(d, args, j.offsetA, j.q0cA, j.q0sA, j.center0Ax, j.center0Ay, j.angle0A, lane,
-               corrects, va, hn::Neg(hn::Mul(moveA, px)), hn::Neg(hn::Mul(moveA, py)),
-               hn::Mul(hn::Mul(hn::Neg(scale), iA), angularA), a);
-  moveAndStore(d, args, j.offsetB, j.q0cB, j.q0sB, j.center0Bx, j.center0By, j.angle0B, lane,
-               corrects, vb, hn::Mul(moveB, px), hn::Mul(moveB, py),
-               hn::Mul(hn::Mul(scale, iB), angularB), b);
+  const auto store = [&](const auto& where) {
+    moveAndStore(d, args, j.offsetA, j.q0cA, j.q0sA, j.center0Ax, j.center0Ay, j.angle0A, lane,
+                 where, va, hn::Neg(hn::Mul(moveA, px)), hn::Neg(hn::Mul(moveA, py)),
+                 hn::Mul(hn::Mul(hn::Neg(scale), iA), angularA), a);
+    moveAndStore(d, args, j.offsetB, j.q0cB, j.q0sB, j.center0Bx, j.center0By, j.angle0B, lane,
+                 where, vb, hn::Mul(moveB, px), hn::Mul(moveB, py),
+                 hn::Mul(hn::Mul(scale, iB), angularB), b);
+  };
+  if (mayNeed(d, hn::Not(corrects))) {
+    store(corrects);
+  } else {
+    store(hn::FirstN(d, 1));  // one lane, finite
+  }
   return error;
 }
 
