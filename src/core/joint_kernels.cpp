@@ -422,43 +422,38 @@ int PositionJointOverflow(const JointLaneArgs& args, int firstLane, int count, d
   return count;
 }
 
-void PositionJointLanes(const JointLaneArgs& args, int begin, int end, double linearSlop,
-                        double* widest, bool* within) {
-  auto note = [&](auto d, const auto& errors, int count) {
-    noteErrors(d, errors, count, linearSlop, widest, within);
-  };
+// Runs fn(d, bundle, lane) over the lane groups of the bundles [begin, end): as many lanes at once
+// as the instruction set holds.
+template <class Fn>
+HWY_INLINE void forEachLaneGroup(const JointLaneArgs& args, int begin, int end, const Fn& fn) {
   const hn::CappedTag<double, kJointLanes> d;
-  const size_t n = hn::Lanes(d);
   for (int k = begin; k < end; ++k) {
-    const JointBundle& j = args.bundles[k];
-    for (size_t first = 0; first < static_cast<size_t>(j.laneCount); first += n) {
-      note(d, positionGroup(d, args, j, first),
-           static_cast<int>(std::min(n, static_cast<size_t>(j.laneCount) - first)));
+    JointBundle& j = args.bundles[k];
+    for (size_t lane = 0; lane < static_cast<size_t>(j.laneCount); lane += hn::Lanes(d)) {
+      fn(d, j, lane);
     }
   }
+}
+
+void PositionJointLanes(const JointLaneArgs& args, int begin, int end, double linearSlop,
+                        double* widest, bool* within) {
+  forEachLaneGroup(args, begin, end, [&](auto d, JointBundle& j, size_t first) {
+    const size_t used = std::min(hn::Lanes(d), static_cast<size_t>(j.laneCount) - first);
+    noteErrors(d, positionGroup(d, args, j, first), static_cast<int>(used), linearSlop, widest,
+               within);
+  });
 }
 
 void RunJointLanes(const JointLaneArgs& args, JointLanePass pass, int begin, int end) {
-  const hn::CappedTag<double, kJointLanes> d;
-  const size_t n = hn::Lanes(d);
-  for (int k = begin; k < end; ++k) {
-    JointBundle& j = args.bundles[k];
-    for (size_t lane = 0; lane < static_cast<size_t>(j.laneCount); lane += n)
-      group(d, args, pass, j, lane);
-  }
+  forEachLaneGroup(args, begin, end,
+                   [&](auto d, JointBundle& j, size_t lane) { group(d, args, pass, j, lane); });
 }
 
 void PrepareJointLanes(const JointLaneArgs& args, int begin, int end) {
-  const hn::CappedTag<double, kJointLanes> d;
-  const size_t n = hn::Lanes(d);
-  for (int k = begin; k < end; ++k) {
-    JointBundle& j = args.bundles[k];
-    for (size_t lane = 0; lane < static_cast<size_t>(j.laneCount); lane += n) {
-      const auto a = loadBodies(d, args.states, j.offsetA + lane);
-      const auto b = loadBodies(d, args.states, j.offsetB + lane);
-      prepare(d, j, lane, args.h, a, b);
-    }
-  }
+  forEachLaneGroup(args, begin, end, [&](auto d, JointBundle& j, size_t lane) {
+    prepare(d, j, lane, args.h, loadBodies(d, args.states, j.offsetA + lane),
+            loadBodies(d, args.states, j.offsetB + lane));
+  });
 }
 
 int RunJointOverflow(const JointLaneArgs& args, JointLanePass pass, int firstLane, int count) {
