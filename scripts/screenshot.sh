@@ -19,7 +19,9 @@ WS="${IMPULSE2D_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/impulse2d_ws}"
 export PATH="/usr/bin:$PATH"  # Debian's python3 for the ROS tools
 SCREEN_WIDTH=1280             # the RViz configs' window size
 SCREEN_HEIGHT=800
-VIEW_BACKGROUND="rgb(48,48,48)"  # the configs' 3D view background: finds the view in the picture
+# What fills the 3D view where nothing is drawn, to find the view in the picture: the configs'
+# background, or a map's free cells (RViz's Map display, rgb 192 grey) where a map covers it.
+VIEW_BACKGROUNDS=("rgb(48,48,48)" "rgb(192,192,192)")
 STARTUP_TIMEOUT=40            # s, for each of: master, X screen, stepping, RViz subscribing, drawing
 
 die() {
@@ -56,6 +58,11 @@ for tool in xvfb-run xauth import convert rviz roscore roslaunch rostopic; do
 done
 [ -f "$WS/devel/setup.bash" ] && [ -x "$WS/devel/lib/impulse2d/impulse2d_node" ] ||
   die "no built workspace at $WS: run scripts/build.sh first (or set IMPULSE2D_WS)"
+# The workspace first: a scene's package:// paths (maps) resolve through it.
+set +u  # catkin's setup script reads unset variables
+# shellcheck disable=SC1091
+source "$WS/devel/setup.bash"
+set -u
 
 # The scene's plane and frame_id decide the RViz config and its fixed frame.
 if [ -n "$launch" ]; then
@@ -141,10 +148,6 @@ export ROS_MASTER_URI="http://127.0.0.1:$port" ROS_IP=127.0.0.1 ROS_HOME="$tmp/r
 export XDG_RUNTIME_DIR="$tmp/xdg"  # RViz (Qt) would otherwise leave /tmp/runtime-$USER behind
 mkdir -m 700 "$XDG_RUNTIME_DIR"
 unset ROS_HOSTNAME
-set +u  # catkin's setup script reads unset variables
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
-set -u
 roscore -p "$port" >"$tmp/roscore.log" 2>&1 &
 started+=($!)
 wait_for "ROS master on port $port" "$tmp/roscore.log" rosparam get /run_id
@@ -192,14 +195,19 @@ wait_for "RViz subscribing to /impulse2d/markers" "$launch_log" rviz_listens
 # grid and static bodies; any moving, sleeping or touching body is coloured).
 shot="$tmp/shot.png"
 view_geometry() {  # WxH+X+Y of the 3D view in $1: the columns and rows mostly of its background
-  local mask=(convert "$1" -fill black +opaque "$VIEW_BACKGROUND" -fill white -opaque "$VIEW_BACKGROUND")
-  local x0 x1 y0 y1
-  read -r x0 x1 < <("${mask[@]}" -scale "${SCREEN_WIDTH}x1!" -threshold 50% txt:- |
-    awk -F'[,:]' '/#FFFFFF/ { if (first == "") first = $1; last = $1 } END { print first, last }')
-  read -r y0 y1 < <("${mask[@]}" -scale "1x${SCREEN_HEIGHT}!" -threshold 25% txt:- |
-    awk -F'[,:]' '/#FFFFFF/ { if (first == "") first = $2; last = $2 } END { print first, last }')
-  [ -n "$x0" ] && [ -n "$y0" ] || return 1
-  echo "$((x1 - x0 + 1))x$((y1 - y0 + 1))+$x0+$y0"
+  local background mask x0 x1 y0 y1
+  for background in "${VIEW_BACKGROUNDS[@]}"; do
+    mask=(convert "$1" -fill black +opaque "$background" -fill white -opaque "$background")
+    read -r x0 x1 < <("${mask[@]}" -scale "${SCREEN_WIDTH}x1!" -threshold 50% txt:- |
+      awk -F'[,:]' '/#FFFFFF/ { if (first == "") first = $1; last = $1 } END { print first, last }')
+    read -r y0 y1 < <("${mask[@]}" -scale "1x${SCREEN_HEIGHT}!" -threshold 25% txt:- |
+      awk -F'[,:]' '/#FFFFFF/ { if (first == "") first = $2; last = $2 } END { print first, last }')
+    if [ -n "$x0" ] && [ -n "$y0" ]; then
+      echo "$((x1 - x0 + 1))x$((y1 - y0 + 1))+$x0+$y0"
+      return 0
+    fi
+  done
+  return 1
 }
 coloured_pixels() {  # pixels of saturation > 40% in the 3D view of $1
   local view
