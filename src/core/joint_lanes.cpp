@@ -76,6 +76,12 @@ void JointLanes::layOut(const std::vector<Joint>& joints, const std::vector<int>
     }
     bundleStart_.push_back(static_cast<int>(bundles_.size()));
   }
+  // The overflow's lanes follow one another: a run ends only at a joint that takes none.
+  overflowRuns_.assign(overflowLanes_.size(), 0);
+  for (size_t i = overflowLanes_.size(); i-- > 0;) {
+    if (overflowLanes_[i] < 0) continue;
+    overflowRuns_[i] = i + 1 < overflowLanes_.size() ? overflowRuns_[i + 1] + 1 : 1;
+  }
 }
 
 void JointLanes::prefetchBodiesAhead(int k, int lane, int end, const std::vector<Joint>& joints,

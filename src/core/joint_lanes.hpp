@@ -124,6 +124,9 @@ class JointLanes {
   /// The i-th overflow joint's lane (bundle * kJointLanes + lane), or -1: it takes none. The
   /// overflow's lanes are solved one at a time, in the overflow's order.
   int overflowLane(int i) const { return overflowLanes_[static_cast<size_t>(i)]; }
+  /// How many overflow joints from the i-th on take consecutive lanes (0 where it takes none): a
+  /// run the kernels take in one call.
+  int overflowRun(int i) const { return overflowRuns_[static_cast<size_t>(i)]; }
   JointBundle* bundles() { return bundles_.data(); }
   JointBundle& bundle(int k) { return bundles_[k]; }
   /// Copies a lane's rows and impulse into its joint (for the scalar path), and back.
@@ -146,6 +149,7 @@ class JointLanes {
   std::vector<int> bundleStart_;                // by colour, one past the last
   std::vector<std::vector<int>> scalarJoints_;  // by colour
   std::vector<int> overflowLanes_;              // by overflow joint
+  std::vector<int> overflowRuns_;               // by overflow joint
 };
 
 }  // namespace impulse2d

@@ -402,6 +402,10 @@ struct WorldImpl {
   /// correctSubstepPositions' jointOp does.
   template <class JointOp>
   void positionLanes(const JointLaneArgs& args, int bundle, int worker, const JointOp& jointOp);
+  /// Runs a joint-lane position kernel (kernel(widest, within) returns how many joints it took)
+  /// into the worker's verdict: the widest error, and jointsOk cleared where one was not within.
+  template <class Kernel>
+  int intoVerdict(int worker, const Kernel& kernel);
   /// The lanes of bundles [begin, end) whose warm start the kernels left to the scalar path.
   void warmStartScalarLanes(int begin, int end);
   // solveSubsteps' stages, in order.

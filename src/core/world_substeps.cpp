@@ -119,6 +119,15 @@ void WorldImpl::warmStartScalarLanes(int begin, int end) {
   }
 }
 
+template <class Kernel>
+int WorldImpl::intoVerdict(int worker, const Kernel& kernel) {
+  StepScratch::PassVerdict& verdict = scratch.workerVerdicts[static_cast<size_t>(worker)].value;
+  bool within = true;
+  const int ran = kernel(&verdict.widest, &within);
+  if (!within) verdict.jointsOk = false;
+  return ran;
+}
+
 template <class JointOp>
 void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int worker,
                               const JointOp& jointOp) {
@@ -129,10 +138,10 @@ void WorldImpl::positionLanes(const JointLaneArgs& args, int bundle, int worker,
     }
     return;
   }
-  StepScratch::PassVerdict& verdict = scratch.workerVerdicts[static_cast<size_t>(worker)].value;
-  bool within = true;
-  positionJointLanes(args, bundle, bundle + 1, def.linearSlop, &verdict.widest, &within);
-  if (!within) verdict.jointsOk = false;
+  intoVerdict(worker, [&](double* widest, bool* within) {
+    positionJointLanes(args, bundle, bundle + 1, def.linearSlop, widest, within);
+    return 1;
+  });
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
@@ -180,15 +189,14 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
           continue;
         }
         const int firstJoint = jointStart[color], endJoint = jointStart[color + 1];
-        stepWorkers.stage(blocksOf(endJoint - firstJoint, kJointsPerBlock),
-                          [&](int block, int worker) {
-                            const int from = firstJoint + block * kJointsPerBlock;
-                            const int to = std::min(endJoint, from + kJointsPerBlock);
-                            for (int k = from; k < to; ++k) {
-                              prefetchJointAhead(k, to, access != JointAccess::Velocities);
-                              onJoint<access>(k, worker, jointOp);
-                            }
-                          });
+        stepWorkers.forRanges(endJoint - firstJoint, kJointsPerBlock,
+                              [&](int begin, int last, int worker) {
+                                const int from = firstJoint + begin, to = firstJoint + last;
+                                for (int k = from; k < to; ++k) {
+                                  prefetchJointAhead(k, to, access != JointAccess::Velocities);
+                                  onJoint<access>(k, worker, jointOp);
+                                }
+                              });
       }
       // The overflow, one joint after the other: in a lane of its own where it has one. The
       // lanes of consecutive joints are consecutive: a run of them goes to the kernels at once.
@@ -209,14 +217,11 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
           onJoint<access>(k++, 0, jointOp);
           continue;
         }
-        int run = 1;
-        while (k + run < end && jointLanes.overflowLane(k + run - first) == lane + run) ++run;
+        const int run = jointLanes.overflowRun(k - first);
         if constexpr (access == JointAccess::WritePoses) {
-          StepScratch::PassVerdict& verdict = scratch.workerVerdicts[0].value;
-          bool within = true;
-          const int ran =
-              positionJointOverflow(args, lane, run, def.linearSlop, &verdict.widest, &within);
-          if (!within) verdict.jointsOk = false;
+          const int ran = intoVerdict(0, [&](double* widest, bool* within) {
+            return positionJointOverflow(args, lane, run, def.linearSlop, widest, within);
+          });
           k += ran;
           if (ran == 0) onJoint<access>(k++, 0, jointOp);  // its bundle has limits: scalar
           continue;
