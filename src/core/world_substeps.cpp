@@ -47,6 +47,14 @@ constexpr int kJointBundlesPerCopyBlock = kJointsPerCopyBlock / kJointLanes;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
+// A colour's bundles (of contacts or joints) go in blocks of `most`, or finer (down to a bundle)
+// where that would leave a thread fewer than four blocks: the last colours of a pile are small
+// (v3_compounds ends in colours of 3 to 15 bundles), and in blocks of four most of such a colour
+// ran on one thread while the other waited. Blocks never change what is computed.
+int bundlesPerBlock(int bundles, int threads, int most) {
+  return std::clamp(bundles / (4 * threads), 1, most);
+}
+
 // Asks for every line of a joint (the copies into and out of colour order read or write it all).
 template <bool forWriting>
 void prefetchWholeJoint(const Joint& joint) {
@@ -151,13 +159,14 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
   const int bundles = jointLanes.bundleStart(color + 1) - firstBundle;
   const std::vector<int>& scalar = jointLanes.scalarJoints(color);
   const int count = static_cast<int>(scalar.size());
-  const int bundleBlocks = blocksOf(bundles, kJointBundlesPerBlock);
+  const int perBlock = bundlesPerBlock(bundles, stepWorkers.threads(), kJointBundlesPerBlock);
+  const int bundleBlocks = blocksOf(bundles, perBlock);
   stepWorkers.stage(bundleBlocks + blocksOf(count, kJointsPerBlock), [&](int block, int worker) {
     if (block < bundleBlocks) {
       JointLaneArgs args = jointLaneArgs;
       args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(worker) * kStateDoubles);
-      const int from = firstBundle + block * kJointBundlesPerBlock;
-      const int to = std::min(firstBundle + bundles, from + kJointBundlesPerBlock);
+      const int from = firstBundle + block * perBlock;
+      const int to = std::min(firstBundle + bundles, from + perBlock);
       if constexpr (access == JointAccess::WritePoses) {
         for (int k = from; k < to; ++k) positionLanes(args, k, worker, jointOp);
       } else {
@@ -241,7 +250,8 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
   };
   for (int color = 0; color < colors; ++color) {
     const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
-    stepWorkers.forRanges(end - first, kBundlesPerBlock, [&](int begin, int last, int worker) {
+    const int perBlock = bundlesPerBlock(end - first, stepWorkers.threads(), kBundlesPerBlock);
+    stepWorkers.forRanges(end - first, perBlock, [&](int begin, int last, int worker) {
       bundleOp(sink(worker), first + begin, first + last, false, worker);
     });
   }
