@@ -35,9 +35,12 @@ constexpr double kMaxJointHertzPerSubstepRate = 0.25;
 // Contact springs stiffer than this fraction of the sub-step rate were measured to shake the
 // 5050-box pyramid apart (0.19 sways, 0.25 collapses; 0.15 holds it within 3 cm).
 constexpr double kMaxContactHertzPerSubstepRate = 0.15;
-// Work shared among threads comes in blocks of this many bundles or joints: big enough that
-// claiming a block costs little, small enough that the threads finish a colour together.
+// Work shared among threads comes in blocks of at most this many bundles or joints: big enough
+// that claiming a block costs little, small enough that the threads finish a colour together.
+// A small colour is cut finer (bundlesPerBlock), so that each thread gets at least
+// kLeastBlocksPerThread blocks of it.
 constexpr int kBundlesPerBlock = 4;
+constexpr int kLeastBlocksPerThread = 4;
 constexpr int kJointsPerBlock = 32;
 constexpr int kJointBundlesPerBlock = 4;
 // Joints copied to and from their colours' order per block, and the joint lanes' bundles filled
@@ -48,11 +51,11 @@ constexpr int kJointBundlesPerCopyBlock = kJointsPerCopyBlock / kJointLanes;
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
 // A colour's bundles (of contacts or joints) go in blocks of `most`, or finer (down to a bundle)
-// where that would leave a thread fewer than four blocks: the last colours of a pile are small
-// (v3_compounds ends in colours of 3 to 15 bundles), and in blocks of four most of such a colour
-// ran on one thread while the other waited. Blocks never change what is computed.
+// where that would leave a thread fewer than kLeastBlocksPerThread blocks: the last colours of a
+// pile are small (v3_compounds ends in colours of 3 to 15 bundles), and in blocks of four most of
+// such a colour ran on one thread while the other waited. Blocks never change what is computed.
 int bundlesPerBlock(int bundles, int threads, int most) {
-  return std::clamp(bundles / (4 * threads), 1, most);
+  return std::clamp(bundles / (kLeastBlocksPerThread * threads), 1, most);
 }
 
 // Asks for every line of a joint (the copies into and out of colour order read or write it all).
