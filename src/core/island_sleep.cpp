@@ -27,6 +27,10 @@ bool isMovingKinematic(const Body& body) {
   return body.type == BodyType::Kinematic && isMoving(body);
 }
 
+// What a link to a movable body does: a dynamic body joins the island; a moving kinematic one
+// holds the dynamic body it touches awake; a kinematic one at rest does neither.
+enum : uint8_t { kJoinsIsland, kHoldsIsland, kNoLink };
+
 // The root of place k's island; halves the path on the way, so chains stay short.
 int rootOf(std::vector<int>& parent, int k) {
   while (parent[k] != k) {
@@ -96,9 +100,17 @@ void WorldImpl::updateSleep(double dt) {
   const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;
   const double angTol2 = def.sleepAngularTolerance * def.sleepAngularTolerance;
 
+  // By movable place, what a link to the body does (kinds below): read here, with the bodies,
+  // so that the links need not read them again.
+  const int movableCount = static_cast<int>(movableSlots.size());
+  std::vector<uint8_t>& kind = scratch.islandKind;
+  kind.resize(static_cast<size_t>(movableCount));
   bool anyAwake = false, anyAsleep = false;
-  for (const int i : movableSlots) {
-    Body& body = bodies.items[i];
+  for (int k = 0; k < movableCount; ++k) {
+    Body& body = bodies.items[movableSlots[k]];
+    kind[k] = body.type == BodyType::Dynamic ? kJoinsIsland
+              : isMovingKinematic(body)      ? kHoldsIsland
+                                             : kNoLink;
     if (body.type != BodyType::Dynamic) continue;
     if (!body.awake) {
       anyAsleep = true;
@@ -109,14 +121,36 @@ void WorldImpl::updateSleep(double dt) {
                        body.angularVelocity * body.angularVelocity <= angTol2;
     body.sleepTime = still ? body.sleepTime + dt : 0.0;
   }
-  // The NGS pass moves overlapping bodies apart without giving them velocity: a body still being
-  // pushed out of an overlap is not at rest.
-  for (const Contact& c : contacts) {
-    for (int i = 0; i < c.manifold.pointCount; ++i) {
-      if (c.manifold.points[i].separation < -2.0 * def.linearSlop) {
-        bodies.items[c.bodyA].sleepTime = 0.0;
-        bodies.items[c.bodyB].sleepTime = 0.0;
+  // One parallel pass over the contacts (a pile's contacts outnumber its bodies five to one, and
+  // reading them twice on one thread was most of this stage): the overlaps too deep to rest, and
+  // the touching pairs of movable bodies (places), which the islands link. The NGS pass moves
+  // overlapping bodies apart without giving them velocity: a body still being pushed out of an
+  // overlap is not at rest.
+  const int contactCount = static_cast<int>(contacts.size());
+  auto& ofBlock = scratch.sleepContactsOfBlock;
+  ofBlock.resize(static_cast<size_t>(contactCount + kContactsPerBlock - 1) / kContactsPerBlock);
+  stepWorkers.forRanges(contactCount, kContactsPerBlock, [&](int begin, int end, int) {
+    StepScratch::SleepContacts& found =
+        ofBlock[static_cast<size_t>(begin / kContactsPerBlock)].value;
+    found.deep.clear();
+    found.links.clear();
+    for (size_t i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
+      const Contact& c = contacts[i];
+      for (int k = 0; k < c.manifold.pointCount; ++k) {
+        if (c.manifold.points[k].separation < -2.0 * def.linearSlop) {
+          found.deep.emplace_back(c.bodyA, c.bodyB);
+        }
       }
+      // Static bodies join no island (movableIndex tells them without reading the bodies).
+      if (isMovable(c.bodyA) && isMovable(c.bodyB) && isTouching(c)) {
+        found.links.emplace_back(movableIndex[c.bodyA], movableIndex[c.bodyB]);
+      }
+    }
+  });
+  for (const auto& block : ofBlock) {
+    for (const auto& [slotA, slotB] : block.value.deep) {
+      bodies.items[slotA].sleepTime = 0.0;
+      bodies.items[slotB].sleepTime = 0.0;
     }
   }
   if (!anyAwake) return;  // no island has a body awake: none wakes, none falls asleep
@@ -131,33 +165,33 @@ void WorldImpl::updateSleep(double dt) {
 
   // Link the dynamic bodies that touch or are jointed; mark those a moving kinematic body
   // touches or holds.
-  const int movableCount = static_cast<int>(movableSlots.size());
   std::vector<int>& parent = scratch.islandParent;
   std::vector<uint8_t>& held = scratch.islandHeld;
   parent.resize(static_cast<size_t>(movableCount));
   for (int k = 0; k < movableCount; ++k) parent[k] = k;
   held.assign(static_cast<size_t>(movableCount), 0);
-  auto link = [&](int slotA, int slotB) {
-    const Body& a = bodies.items[slotA];
-    const Body& b = bodies.items[slotB];
-    if (a.type == BodyType::Dynamic && b.type == BodyType::Dynamic) {
-      const int rootA = rootOf(parent, movableIndex[slotA]);
-      const int rootB = rootOf(parent, movableIndex[slotB]);
+  auto link = [&](int placeA, int placeB) {
+    if (kind[placeA] == kJoinsIsland && kind[placeB] == kJoinsIsland) {
+      const int rootA = rootOf(parent, placeA);
+      const int rootB = rootOf(parent, placeB);
       if (rootA < rootB) parent[rootB] = rootA;
       if (rootB < rootA) parent[rootA] = rootB;
-    } else if (a.type == BodyType::Dynamic && isMovingKinematic(b)) {
-      held[movableIndex[slotA]] = 1;
-    } else if (b.type == BodyType::Dynamic && isMovingKinematic(a)) {
-      held[movableIndex[slotB]] = 1;
+    } else if (kind[placeA] == kJoinsIsland && kind[placeB] == kHoldsIsland) {
+      held[placeA] = 1;
+    } else if (kind[placeB] == kJoinsIsland && kind[placeA] == kHoldsIsland) {
+      held[placeB] = 1;
     }
   };
-  for (const Contact& c : contacts) {
-    if (isTouching(c)) link(c.bodyA, c.bodyB);
+  for (const auto& block : ofBlock) {
+    for (const auto& [placeA, placeB] : block.value.links) link(placeA, placeB);
   }
   // Every joint once, in slot order (its bodies' lists would be a cache miss each): a root is
   // always its island's lowest index, whatever the order of the links.
   for (size_t j = 0; j < jointBodies.size(); ++j) {
-    if (joints.alive[j]) link(jointBodies[j].first, jointBodies[j].second);
+    const auto [slotA, slotB] = jointBodies[j];
+    if (joints.alive[j] && isMovable(slotA) && isMovable(slotB)) {
+      link(movableIndex[slotA], movableIndex[slotB]);
+    }
   }
 
   // Each island at its root: whether a body of it is awake, then (its sleepers woken) the least

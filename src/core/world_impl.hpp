@@ -174,12 +174,19 @@ struct StepScratch {
   std::vector<DeepStatic> deepStatic;
   std::vector<OwnLine<std::vector<DeepStatic>>> deepStaticOfBlock;
   std::vector<Vec2> clusterPush;
-  // Sleeping (island_sleep.cpp). By movable place: the islands' union-find links, whether a
-  // moving kinematic body holds the body; by island root: whether a body is awake, how long all
-  // have been still. wakeStack: the bodies wakeJointedSleepers has still to go on from.
+  // Sleeping (island_sleep.cpp). By movable place: the islands' union-find links, what a link to
+  // the body does, whether a moving kinematic body holds the body; by island root: whether a body
+  // is awake, how long all have been still. wakeStack: the bodies wakeJointedSleepers has still to
+  // go on from.
   std::vector<int> islandParent, wakeStack;
-  std::vector<uint8_t> islandHeld, islandAwake;
+  std::vector<uint8_t> islandKind, islandHeld, islandAwake;
   std::vector<double> islandStillFor;
+  // By block of contacts, read in parallel: the bodies (slots) of the overlaps too deep to rest,
+  // and the touching contacts' pairs of movable bodies (places), which the islands link.
+  struct SleepContacts {
+    std::vector<std::pair<int, int>> deep, links;
+  };
+  std::vector<OwnLine<SleepContacts>> sleepContactsOfBlock;
   // Lost bodies (world_bounds.cpp): by movable place, why a body leaves (null: it stays) and
   // how low it reaches; the candidates, their marks by body slot, a joined group.
   std::vector<std::pair<const char*, RemovalCause>> escapes;
