@@ -100,7 +100,7 @@ void WorldImpl::updateSleep(double dt) {
   const double linTol2 = def.sleepLinearTolerance * def.sleepLinearTolerance;
   const double angTol2 = def.sleepAngularTolerance * def.sleepAngularTolerance;
 
-  // By movable place, what a link to the body does (kinds below): read here, with the bodies,
+  // By movable place, what a link to the body does (kJoinsIsland, ...): read here, with the bodies,
   // so that the links need not read them again.
   const int movableCount = static_cast<int>(movableSlots.size());
   std::vector<uint8_t>& kind = scratch.islandKind;
