@@ -106,21 +106,25 @@ void WorldImpl::updateSleep(double dt) {
   std::vector<uint8_t>& kind = scratch.islandKind;
   kind.resize(static_cast<size_t>(movableCount));
   bool anyAwake = false, anyAsleep = false;
+  bool mayBeStill = false;  // before the deep overlaps' resets, which only make bodies less still
   for (int k = 0; k < movableCount; ++k) {
     Body& body = bodies.items[movableSlots[k]];
     kind[k] = body.type == BodyType::Dynamic ? kJoinsIsland
               : isMovingKinematic(body)      ? kHoldsIsland
                                              : kNoLink;
-    if (body.type != BodyType::Dynamic) continue;
-    if (!body.awake) {
+    if (isActive(body)) {
+      anyAwake = true;
+      const bool still = body.linearVelocity.squaredNorm() <= linTol2 &&
+                         body.angularVelocity * body.angularVelocity <= angTol2;
+      body.sleepTime = still ? body.sleepTime + dt : 0.0;
+      mayBeStill = mayBeStill || body.sleepTime >= def.timeToSleep;
+    } else if (body.type == BodyType::Dynamic) {
       anyAsleep = true;
-      continue;
     }
-    anyAwake = true;
-    const bool still = body.linearVelocity.squaredNorm() <= linTol2 &&
-                       body.angularVelocity * body.angularVelocity <= angTol2;
-    body.sleepTime = still ? body.sleepTime + dt : 0.0;
   }
+  // The islands are needed only where one may wake or fall asleep (below): a busy world collects
+  // no links.
+  const bool mayLink = anyAwake && (anyAsleep || mayBeStill);
   // One parallel pass over the contacts (a pile's contacts outnumber its bodies five to one, and
   // reading them twice on one thread was most of this stage): the overlaps too deep to rest, and
   // the touching pairs of movable bodies (places), which the islands link. The NGS pass moves
@@ -139,10 +143,11 @@ void WorldImpl::updateSleep(double dt) {
       for (int k = 0; k < c.manifold.pointCount; ++k) {
         if (c.manifold.points[k].separation < -2.0 * def.linearSlop) {
           found.deep.emplace_back(c.bodyA, c.bodyB);
+          break;  // both bodies are reset once
         }
       }
       // Static bodies join no island (movableIndex tells them without reading the bodies).
-      if (isMovable(c.bodyA) && isMovable(c.bodyB) && isTouching(c)) {
+      if (mayLink && isMovable(c.bodyA) && isMovable(c.bodyB) && isTouching(c)) {
         found.links.emplace_back(movableIndex[c.bodyA], movableIndex[c.bodyB]);
       }
     }
