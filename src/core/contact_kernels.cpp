@@ -22,7 +22,7 @@
 
 #include "body_lanes-inl.h"
 #include "contact_bundles.hpp"
-#include "contact_math.hpp"
+#include "two_point_block-inl.h"
 
 #include <impulse2d/simd.hpp>
 
@@ -171,58 +171,6 @@ HWY_INLINE void applyNormals(Bodies<D>* a, Bodies<D>* b, const Frame<D>& f, cons
       b->w, hn::Mul(f.iB, hn::Add(hn::Mul(r1.normalB, amount1), hn::Mul(r2.normalB, amount2))));
 }
 
-// Both normal rows of a lane at once: the 2x2 LCP of the accumulated impulses x (old: x0),
-//   w = v + K (x - x0) >= 0,  x >= 0,  x_i w_i = 0,
-// where v is each row's speed plus its bias now. It has few enough cases to try them all, in the
-// order contact_math.hpp tries them: both rows push, only the first, only the second, neither.
-// Only K12, K^-1 and m_i = 1 / K_ii enter: "w_i >= 0" is tested as m_i w_i >= 0 (m_i > 0), so
-// the diagonal of K is not kept. A one-point lane has m2 = K12 = 0, and its second row stays 0.
-// Lanes where no case fits (round-off on a degenerate pair) keep x0.
-template <class D>
-struct Block {
-  V<D> k12, inverse11, inverse12, inverse22, mass1, mass2;
-};
-
-template <class D>
-HWY_INLINE void solveBlock(D d, const Block<D>& k, const V<D>& v1, const V<D>& v2, const V<D>& old1,
-                           const V<D>& old2, V<D>* x1, V<D>* x2) {
-  const V<D> zero = hn::Zero(d);
-  const V<D> both1 = hn::Sub(old1, hn::Add(hn::Mul(k.inverse11, v1), hn::Mul(k.inverse12, v2)));
-  const V<D> both2 = hn::Sub(old2, hn::Add(hn::Mul(k.inverse12, v1), hn::Mul(k.inverse22, v2)));
-  const auto both = hn::And(hn::Ge(both1, zero), hn::Ge(both2, zero));
-  // One lane at a time (the overflow, one contact after the other), the common case of a resting
-  // pair is taken on a branch, so the next contact need not wait for the other cases' tests
-  // (stack20: a tenth of its step). Lanes side by side keep the selects: there a mispredicted
-  // branch costs more than the tests.
-  if constexpr (std::is_same_v<D, D1>) {
-    if (hn::AllTrue(d, both)) {
-      *x1 = both1;
-      *x2 = both2;
-      return;
-    }
-  }
-  // Only the first: x2 = 0.
-  const V<D> first = hn::Sub(old1, hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))));
-  const V<D> w2 =
-      hn::Sub(hn::Mul(k.mass2, hn::Add(v2, hn::Mul(k.k12, hn::Sub(first, old1)))), old2);
-  const auto onlyFirst = hn::And(hn::Ge(first, zero), hn::Ge(w2, zero));
-  // Only the second: x1 = 0.
-  const V<D> second = hn::Sub(old2, hn::Mul(k.mass2, hn::Sub(v2, hn::Mul(k.k12, old1))));
-  const V<D> w1 =
-      hn::Sub(hn::Mul(k.mass1, hn::Add(v1, hn::Mul(k.k12, hn::Sub(second, old2)))), old1);
-  const auto onlySecond = hn::And(hn::Ge(second, zero), hn::Ge(w1, zero));
-  // Neither.
-  const V<D> rest1 = hn::Sub(hn::Mul(k.mass1, hn::Sub(v1, hn::Mul(k.k12, old2))), old1);
-  const V<D> rest2 = hn::Sub(hn::Mul(k.mass2, hn::Sub(v2, hn::Mul(k.k12, old1))), old2);
-  const auto none = hn::And(hn::Ge(rest1, zero), hn::Ge(rest2, zero));
-  const auto fits = hn::Or(hn::Or(both, onlyFirst), hn::Or(onlySecond, none));
-  const V<D> new1 = hn::IfThenElse(both, both1, hn::IfThenElseZero(onlyFirst, first));
-  const V<D> new2 =
-      hn::IfThenElse(both, both2, hn::IfThenElseZero(hn::AndNot(onlyFirst, onlySecond), second));
-  *x1 = hn::IfThenElse(fits, new1, old1);
-  *x2 = hn::IfThenElse(fits, new2, old2);
-}
-
 // Friction rows of both points, clamped to the cone of their current normal impulses.
 template <class D>
 HWY_INLINE void solveFriction(D d, ContactBundle& c, BundleExtra& extra, size_t lane, bool relax,
@@ -274,9 +222,10 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
       hn::Store(hn::Min(hn::Load(d, approach), vn[i]), d, approach);
     }
   }
-  Block<D> k{loadFloat(d, c.k12 + lane),           loadFloat(d, c.inverse11 + lane),
-             loadFloat(d, c.inverse12 + lane),     loadFloat(d, c.inverse22 + lane),
-             loadFloat(d, c.normalMass[0] + lane), loadFloat(d, c.normalMass[1] + lane)};
+  TwoPointBlock<SimdLanes<D>> k{
+      loadFloat(d, c.k12 + lane),           loadFloat(d, c.inverse11 + lane),
+      loadFloat(d, c.inverse12 + lane),     loadFloat(d, c.inverse22 + lane),
+      loadFloat(d, c.normalMass[0] + lane), loadFloat(d, c.normalMass[1] + lane)};
   V<D> v[2];
   if (!pass.useBias) {
     for (int i = 0; i < 2; ++i) {
@@ -316,7 +265,7 @@ HWY_INLINE void solveNormals(D d, const BundlePass& pass, ContactBundle& c, Bund
     k.inverse22 = hn::IfThenElseZero(twoPoints, hn::Mul(diagonal[0], inverseDet));
   }
   V<D> x1, x2;
-  solveBlock(d, k, v[0], v[1], old1, old2, &x1, &x2);
+  solveTwoPointBlock(SimdLanes<D>{d}, k, v[0], v[1], old1, old2, &x1, &x2);
   if (c.anySequential) {
     // Nearly coincident points, too ill-conditioned for the block: one row after the other,
     // the second seeing the first's impulse through the coupling K12.
@@ -448,48 +397,17 @@ HWY_INLINE V<D> positionGroup(D d, const BundlePass& pass, ContactBundle& c, siz
                rBy = hn::Sub(turnedBy, hn::Mul(half, gapY));
     rnA[i] = hn::Sub(hn::Mul(rAx, f.ny), hn::Mul(rAy, f.nx));
     rnB[i] = hn::Sub(hn::Mul(rBx, f.ny), hn::Mul(rBy, f.nx));
-    correction[i] = hn::IfThenElseZero(
-        present, hn::Min(hn::Max(hn::Mul(hn::Set(d, pass.baumgarte),
-                                         hn::Add(s, hn::Set(d, pass.linearSlop))),
-                                 hn::Set(d, -pass.maxLinearCorrection)),
-                         zero));
+    correction[i] =
+        hn::IfThenElseZero(present, positionCorrection(SimdLanes<D>{d}, s, pass.baumgarte,
+                                                       pass.linearSlop, pass.maxLinearCorrection));
   }
   if (hn::AllTrue(d, hn::Eq(hn::Or(correction[0], correction[1]), zero))) {
     return deepest;  // every point within the slop
   }
-  const V<D> m = hn::Add(f.mA, f.mB);
-  const V<D> k11 = hn::Add(
-      m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[0])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[0]))));
-  const V<D> k22 = hn::Add(
-      m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[1], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[1], rnB[1]))));
-  const V<D> k12 = hn::Add(
-      m, hn::Add(hn::Mul(f.iA, hn::Mul(rnA[0], rnA[1])), hn::Mul(f.iB, hn::Mul(rnB[0], rnB[1]))));
-  const V<D> one = hn::Set(d, 1.0);
   const auto twoPoints = hn::Gt(loadFloat(d, c.normalMass[1] + lane), zero);
-  const auto positive1 = hn::Gt(k11, zero), positive2 = hn::Gt(k22, zero);
-  const V<D> mass1 =
-      hn::IfThenElseZero(positive1, hn::Div(one, hn::IfThenElse(positive1, k11, one)));
-  const V<D> mass2 =
-      hn::IfThenElseZero(positive2, hn::Div(one, hn::IfThenElse(positive2, k22, one)));
-  const V<D> det = hn::Sub(hn::Mul(k11, k22), hn::Mul(k12, k12));
-  // As contact_math.hpp's wellConditioned: k11^2 < kMaxBlockCondition det.
-  const auto block =
-      hn::And(twoPoints, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, kMaxBlockCondition), det)));
-  const V<D> inverseDet = hn::Div(one, hn::IfThenElse(block, det, one));
-  // Pushes x >= 0 with K x + correction >= 0, complementary: the block from no push at all.
   V<D> x1, x2;
-  solveBlock(d,
-             Block<D>{k12, hn::Mul(k22, inverseDet), hn::Neg(hn::Mul(k12, inverseDet)),
-                      hn::Mul(k11, inverseDet), mass1, mass2},
-             correction[0], correction[1], zero, zero, &x1, &x2);
-  // One point, or a pair too degenerate for the block: the deeper point alone.
-  const auto deeper1 = hn::Le(correction[0], correction[1]);
-  const V<D> alone1 = hn::IfThenElseZero(hn::Or(hn::Not(twoPoints), deeper1),
-                                         hn::Neg(hn::Mul(correction[0], mass1)));
-  const V<D> alone2 =
-      hn::IfThenElseZero(hn::AndNot(deeper1, twoPoints), hn::Neg(hn::Mul(correction[1], mass2)));
-  x1 = hn::IfThenElse(block, x1, alone1);
-  x2 = hn::IfThenElse(block, x2, alone2);
+  positionPushes(SimdLanes<D>{d}, hn::Add(f.mA, f.mB), f.iA, f.iB, rnA, rnB, correction, twoPoints,
+                 &x1, &x2);
   const V<D> sum = hn::Add(x1, x2);
   a.dx = hn::Sub(a.dx, hn::Mul(hn::Mul(f.mA, sum), f.nx));
   a.dy = hn::Sub(a.dy, hn::Mul(hn::Mul(f.mA, sum), f.ny));
@@ -565,8 +483,7 @@ HWY_INLINE void massGroup(D d, ContactBundle& c, BundleExtra& e, size_t lane, bo
     hn::Store(k22, d, e.k[1] + lane);
   }
   const V<D> det = hn::Sub(hn::Mul(k11, k22), hn::Mul(k12, k12));
-  const auto block =
-      hn::And(two, hn::Lt(hn::Mul(k11, k11), hn::Mul(hn::Set(d, kMaxBlockCondition), det)));
+  const auto block = hn::And(two, wellConditioned(SimdLanes<D>{d}, k11, det));
   const auto sequential = hn::AndNot(block, two);
   const V<D> single = hn::IfThenElseZero(hn::And(used, hn::Gt(k11, zero)), hn::Div(one, k11));
   const V<D> inverse11 =

@@ -2,11 +2,20 @@
 
 #include "contact_math.hpp"
 #include "position_pass.hpp"
+#include "two_point_block-inl.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace impulse2d {
+
+// The two-point block (two_point_block-inl.h) on doubles, as the kernels run it in lanes.
+using HWY_NAMESPACE::positionCorrection;
+using HWY_NAMESPACE::positionPushes;
+using HWY_NAMESPACE::ScalarLanes;
+using HWY_NAMESPACE::solveTwoPointBlock;
+using HWY_NAMESPACE::TwoPointBlock;
+using HWY_NAMESPACE::wellConditioned;
 
 // A body pressed into overlaps from opposite sides by bodies the step does not move (static,
 // kinematic, asleep) cannot leave them. Baumgarte's pushes out of each overlap cannot all be met,
@@ -81,7 +90,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
     const SolverBody& a = bodies[c.a];
     const SolverBody& b = bodies[c.b];
     c.blockSolve = false;
-    c.k11 = c.k12 = c.k22 = 0.0;
+    c.k12 = 0.0;
     c.inverse11 = c.inverse12 = c.inverse22 = 0.0;
     c.normal = m.normal;
     extra.localNormal = a.q.applyInverse(m.normal);
@@ -124,18 +133,18 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       const ContactConstraintPoint& p1 = c.points[0];
       const ContactConstraintPoint& p2 = c.points[1];
       const double m = a.invMass + b.invMass;
-      c.k11 = m + a.invInertia * p1.normalArmA * p1.normalArmA +
-              b.invInertia * p1.normalArmB * p1.normalArmB;
-      c.k22 = m + a.invInertia * p2.normalArmA * p2.normalArmA +
-              b.invInertia * p2.normalArmB * p2.normalArmB;
+      const double k11 = m + a.invInertia * p1.normalArmA * p1.normalArmA +
+                         b.invInertia * p1.normalArmB * p1.normalArmB;
+      const double k22 = m + a.invInertia * p2.normalArmA * p2.normalArmA +
+                         b.invInertia * p2.normalArmB * p2.normalArmB;
       c.k12 = m + a.invInertia * p1.normalArmA * p2.normalArmA +
               b.invInertia * p1.normalArmB * p2.normalArmB;
-      c.blockSolve = wellConditioned(c.k11, c.k12, c.k22);
+      const double det = k11 * k22 - c.k12 * c.k12;
+      c.blockSolve = wellConditioned(ScalarLanes{}, k11, det);
       if (c.blockSolve) {
-        const double det = c.k11 * c.k22 - c.k12 * c.k12;
-        c.inverse11 = c.k22 / det;
+        c.inverse11 = k22 / det;
         c.inverse12 = -c.k12 / det;
-        c.inverse22 = c.k11 / det;
+        c.inverse22 = k11 / det;
       }
     }
   }
@@ -212,13 +221,11 @@ void ContactSolver::solveNormalBlock(ContactConstraint& c, SolverBody& a, Solver
                         ny * (b.linearVelocity.y() - a.linearVelocity.y());
   const double vn1 = linear + b.angularVelocity * p1.normalArmB - a.angularVelocity * p1.normalArmA;
   const double vn2 = linear + b.angularVelocity * p2.normalArmB - a.angularVelocity * p2.normalArmA;
-  // With x the accumulated impulses, vn - target = K (x - x_old) + (vn_old - target).
-  const double b1 = vn1 - target1 - (c.k11 * x1Old + c.k12 * x2Old);
-  const double b2 = vn2 - target2 - (c.k12 * x1Old + c.k22 * x2Old);
+  const TwoPointBlock<ScalarLanes> k{c.k12,       c.inverse11,   c.inverse12,
+                                     c.inverse22, p1.normalMass, p2.normalMass};
   double x1 = 0.0, x2 = 0.0;
-  if (!solveTwoPointLcp(c.k12, c.inverse11, c.inverse12, c.inverse22, p1.normalMass, p2.normalMass,
-                        b1, b2, &x1, &x2)) {
-    return;
+  if (!solveTwoPointBlock(ScalarLanes{}, k, vn1 - target1, vn2 - target2, x1Old, x2Old, &x1, &x2)) {
+    return;  // no case fits: round-off on a degenerate pair
   }
   applyTwoRowImpulses(a, b, nx, ny, p1.normalArmA, p1.normalArmB, x1 - x1Old, p2.normalArmA,
                       p2.normalArmB, x2 - x2Old);
@@ -267,63 +274,36 @@ bool ContactSolver::solvePositions(const WorldDef& def) {
     const ContactConstraintExtra& extra = extras_[k];
     SolverBody& a = bodies[c.a];
     SolverBody& b = bodies[c.b];
-    // In scalars (math.hpp says why): normal n, lever arms rA and rB, corrections.
-    double nx = 0.0, ny = 0.0, rAx[2], rAy[2], rBx[2], rBy[2];
-    double correction[2];
-    // Measures point i at the current (partly corrected) poses.
-    auto measure = [&](int i) {
-      const Vec2 normal = a.q.apply(extra.localNormal);
-      nx = normal.x();
-      ny = normal.y();
-      const Vec2 armA = a.q.apply(extra.localA[i]), armB = b.q.apply(extra.localB[i]);
-      const double pointAx = a.center.x() + armA.x(), pointAy = a.center.y() + armA.y();
-      const double pointBx = b.center.x() + armB.x(), pointBy = b.center.y() + armB.y();
+    // Each point at the current poses: its separation, and its normal arms cross(r, n) at the
+    // point midway between the two anchors. In scalars: math.hpp says why.
+    const Vec2 normal = a.q.apply(extra.localNormal);
+    const double nx = normal.x(), ny = normal.y();
+    double armA[2] = {0.0, 0.0}, armB[2] = {0.0, 0.0}, correction[2] = {0.0, 0.0};
+    for (int i = 0; i < c.pointCount; ++i) {
+      const Vec2 anchorA = a.q.apply(extra.localA[i]), anchorB = b.q.apply(extra.localB[i]);
+      const double pointAx = a.center.x() + anchorA.x(), pointAy = a.center.y() + anchorA.y();
+      const double pointBx = b.center.x() + anchorB.x(), pointBy = b.center.y() + anchorB.y();
       const double separation = (pointBx - pointAx) * nx + (pointBy - pointAy) * ny;
       const double midX = 0.5 * (pointAx + pointBx), midY = 0.5 * (pointAy + pointBy);
-      rAx[i] = midX - a.center.x();
-      rAy[i] = midY - a.center.y();
-      rBx[i] = midX - b.center.x();
-      rBy[i] = midY - b.center.y();
+      armA[i] = (midX - a.center.x()) * ny - (midY - a.center.y()) * nx;
+      armB[i] = (midX - b.center.x()) * ny - (midY - b.center.y()) * nx;
       deepest = std::min(deepest, separation);
-      correction[i] =
-          std::clamp(def.baumgarte * (separation + def.linearSlop), -kMaxLinearCorrection, 0.0);
-    };
-    auto push = [&](int i, double amount) {
-      const double px = amount * nx, py = amount * ny;
-      a.center.x() -= a.invMass * px;
-      a.center.y() -= a.invMass * py;
-      turnBy(a, -a.invInertia * (rAx[i] * py - rAy[i] * px));
-      b.center.x() += b.invMass * px;
-      b.center.y() += b.invMass * py;
-      turnBy(b, b.invInertia * (rBx[i] * py - rBy[i] * px));
-    };
-    auto normalArmA = [&](int i) { return rAx[i] * ny - rAy[i] * nx; };
-    auto normalArmB = [&](int i) { return rBx[i] * ny - rBy[i] * nx; };
-    if (c.pointCount == 2) {
-      // Both points together, as in the velocity pass: one after the other would tilt the body
-      // a little every pass, and a tall stack leans over.
-      measure(0);
-      measure(1);
-      if (correction[0] == 0.0 && correction[1] == 0.0) continue;  // both within the slop
-      const double rn1A = normalArmA(0), rn1B = normalArmB(0);
-      const double rn2A = normalArmA(1), rn2B = normalArmB(1);
-      const double m = a.invMass + b.invMass;
-      const double k11 = m + a.invInertia * rn1A * rn1A + b.invInertia * rn1B * rn1B;
-      const double k22 = m + a.invInertia * rn2A * rn2A + b.invInertia * rn2B * rn2B;
-      const double k12 = m + a.invInertia * rn1A * rn2A + b.invInertia * rn1B * rn2B;
-      double x1 = 0.0, x2 = 0.0;
-      if (wellConditioned(k11, k12, k22) &&
-          solveTwoPointLcp(k11, k12, k22, correction[0], correction[1], &x1, &x2)) {
-        push(0, x1);
-        push(1, x2);
-        continue;
-      }
+      correction[i] = positionCorrection(ScalarLanes{}, separation, def.baumgarte, def.linearSlop,
+                                         kMaxLinearCorrection);
     }
-    // One point, or a pair too degenerate for the block: one at a time.
-    for (int i = 0; i < c.pointCount; ++i) {
-      measure(i);
-      push(i, -correction[i] * rowMass(a, b, normalArmA(i), normalArmB(i)));
-    }
+    if (correction[0] == 0.0 && correction[1] == 0.0) continue;  // every point within the slop
+    // Both points together, as in the velocity pass: one after the other would tilt the body a
+    // little every pass, and a tall stack leans over.
+    double x1 = 0.0, x2 = 0.0;
+    positionPushes(ScalarLanes{}, a.invMass + b.invMass, a.invInertia, b.invInertia, armA, armB,
+                   correction, c.pointCount == 2, &x1, &x2);
+    const double sum = x1 + x2;
+    a.center.x() -= a.invMass * sum * nx;
+    a.center.y() -= a.invMass * sum * ny;
+    b.center.x() += b.invMass * sum * nx;
+    b.center.y() += b.invMass * sum * ny;
+    turnBy(a, -(a.invInertia * (armA[0] * x1 + armA[1] * x2)));
+    turnBy(b, b.invInertia * (armB[0] * x1 + armB[1] * x2));
   }
   return overlapsResolved(deepest, def.linearSlop);
 }

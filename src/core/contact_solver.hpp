@@ -37,11 +37,12 @@ struct ContactConstraint {
   int a, b;               // entries in the step's SolverBodies
   int pointCount;
   // Two-point manifolds whose points are not (nearly) redundant solve both normal impulses at
-  // once: k is their 2x2 effective-mass matrix, inverse its inverse (both used when set).
+  // once (two_point_block-inl.h): k12 couples the rows of their 2x2 effective-mass matrix K,
+  // inverse is K^-1 (both used when set).
   bool blockSolve;
   Vec2 normal;
   double friction, restitution;
-  double k11, k12, k22;
+  double k12;
   double inverse11, inverse12, inverse22;
   ContactConstraintPoint points[2];  // the first pointCount are set
 };
