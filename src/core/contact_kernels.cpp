@@ -486,13 +486,14 @@ HWY_INLINE void massGroup(D d, ContactBundle& c, BundleExtra& e, size_t lane, bo
   const auto block = hn::And(two, wellConditioned(SimdLanes<D>{d}, k11, det));
   const auto sequential = hn::AndNot(block, two);
   const V<D> single = hn::IfThenElseZero(hn::And(used, hn::Gt(k11, zero)), hn::Div(one, k11));
-  const V<D> inverse11 =
-      hn::IfThenElse(block, hn::Div(k22, det), hn::IfThenElseZero(hn::Not(two), single));
+  V<D> inverse11, inverse12, inverse22;
+  blockInverse(SimdLanes<D>{d}, k11, k12, k22, det, &inverse11, &inverse12, &inverse22);
   hn::Store(hn::DemoteTo(df, k12), df, c.k12 + lane);
-  hn::Store(hn::DemoteTo(df, inverse11), df, c.inverse11 + lane);
-  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(block, hn::Div(hn::Neg(k12), det))), df,
-            c.inverse12 + lane);
-  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(block, hn::Div(k11, det))), df, c.inverse22 + lane);
+  hn::Store(
+      hn::DemoteTo(df, hn::IfThenElse(block, inverse11, hn::IfThenElseZero(hn::Not(two), single))),
+      df, c.inverse11 + lane);
+  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(block, inverse12)), df, c.inverse12 + lane);
+  hn::Store(hn::DemoteTo(df, hn::IfThenElseZero(block, inverse22)), df, c.inverse22 + lane);
   HWY_ALIGN double flags[kBundleLanes];
   hn::Store(hn::IfThenElseZero(sequential, one), d, flags);
   for (size_t i = 0; i < hn::Lanes(d) && static_cast<int>(lane + i) < count; ++i) {

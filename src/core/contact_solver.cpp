@@ -10,6 +10,7 @@
 namespace impulse2d {
 
 // The two-point block (two_point_block-inl.h) on doubles, as the kernels run it in lanes.
+using HWY_NAMESPACE::blockInverse;
 using HWY_NAMESPACE::positionCorrection;
 using HWY_NAMESPACE::positionPushes;
 using HWY_NAMESPACE::ScalarLanes;
@@ -142,9 +143,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
       const double det = k11 * k22 - c.k12 * c.k12;
       c.blockSolve = wellConditioned(ScalarLanes{}, k11, det);
       if (c.blockSolve) {
-        c.inverse11 = k22 / det;
-        c.inverse12 = -c.k12 / det;
-        c.inverse22 = k11 / det;
+        blockInverse(ScalarLanes{}, k11, c.k12, k22, det, &c.inverse11, &c.inverse12, &c.inverse22);
       }
     }
   }

@@ -101,6 +101,17 @@ HWY_INLINE MOf<L> wellConditioned(const L& l, VOf<L> k11, VOf<L> det) {
   return l.Lt(l.Mul(k11, k11), l.Mul(l.Set(kMaxBlockCondition), det));
 }
 
+/// K^-1 of a well-conditioned pair from K's entries and determinant: K22 / det, -K12 / det,
+/// K11 / det (the step's prepare; a position pass, which solves each pair once, multiplies by
+/// 1 / det instead).
+template <class L>
+HWY_INLINE void blockInverse(const L& l, VOf<L> k11, VOf<L> k12, VOf<L> k22, VOf<L> det,
+                             VOf<L>* inverse11, VOf<L>* inverse12, VOf<L>* inverse22) {
+  *inverse11 = l.Div(k22, det);
+  *inverse12 = l.Div(l.Neg(k12), det);
+  *inverse22 = l.Div(k11, det);
+}
+
 /// What the block solve reads of K: K12, K^-1 (symmetric) and m_i = 1 / K_ii.
 template <class L>
 struct TwoPointBlock {
