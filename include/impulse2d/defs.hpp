@@ -115,7 +115,9 @@ struct WorldDef {
   double maxLinearSpeed = 400.0;
   /// rad, the most a dynamic body turns in one solver step (a sub-step for the sub-stepping
   /// solvers): 0.25 pi, as Box2D v3, so that a turn never aliases (a body spun half a turn per
-  /// step would seem to stand still) and contacts found before the step stay meaningful.
+  /// step would seem to stand still) and contacts found before the step stay meaningful. A body
+  /// with a joint anchored r m from its centre of mass turns at most maxLinearSpeed / r too, so
+  /// that the anchor moves no faster than a centre may (src/core/motion_limits.hpp, TurnCaps).
   double maxRotation = 0.25 * kPi;
   /// Soft step only: contacts push out of overlaps as damped springs of this frequency, capped
   /// at 0.15 x the sub-step rate (stiffer ones were measured to shake large pyramids apart) and

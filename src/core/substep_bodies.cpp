@@ -10,6 +10,7 @@ void SubstepBodies::gather(const std::vector<Body>& bodies, const std::vector<in
                            const WeldClusters& clusters, StepWorkers& workers) {
   bodies_ = &bodies;
   limits_ = limits;
+  turnCaps_.clear();
   // Blocks of the moving bodies' slots (static bodies have no row and cost nothing here).
   const int movables = static_cast<int>(movableSlots.size());
   const int blocks = (movables + kSlotsPerBlock - 1) / kSlotsPerBlock;
@@ -142,7 +143,7 @@ void SubstepBodies::integrateVelocities(int begin, int end) {
   for (int e = begin; e < last; ++e) {
     BodyState& s = states_[e];
     applyLoad(loads_[e], s.vx, s.vy, s.w);
-    limits_.apply(s.vx, s.vy, s.w);
+    limits_.apply(s.vx, s.vy, s.w, turnCaps_.rate(e, limits_));
   }
 }
 
@@ -164,7 +165,7 @@ void SubstepBodies::integratePositions(int begin, int end, double h) {
         s.vy = start.kinematicVelocity.y();
         s.w = start.kinematicAngularVelocity;
       } else {
-        limits_.apply(s.vx, s.vy, s.w);
+        limits_.apply(s.vx, s.vy, s.w, turnCaps_.rate(e, limits_));
       }
       s.dx += h * s.vx;
       s.dy += h * s.vy;
@@ -196,7 +197,7 @@ void SubstepBodies::finishMember(std::vector<Body>& bodies, int entry, const Mem
   body.xf.q = Rot(body.angle);
   body.xf.p = body.center - body.xf.q.apply(body.localCenter);
   double vx = s.vx, vy = s.vy, w = s.w;
-  limits_.apply(vx, vy, w);
+  limits_.apply(vx, vy, w, turnCaps_.rate(entry, limits_));
   body.linearVelocity = Vec2(vx, vy) + cross(w, Vec2(body.center - center));
   body.angularVelocity = w;
 }
@@ -225,7 +226,8 @@ void SubstepBodies::finish(std::vector<Body>& bodies, int begin, int end) const 
     body.xf.p.y() = cy - (q.s * lx + q.c * ly);
     if (e < dynamicCount_) {
       double vx = s.vx, vy = s.vy, w = s.w;
-      limits_.apply(vx, vy, w);  // restitution and the relax pass come after the last move
+      // Restitution and the relax pass come after the last move.
+      limits_.apply(vx, vy, w, turnCaps_.rate(e, limits_));
       body.linearVelocity = Vec2(vx, vy);
       body.angularVelocity = w;
     }

@@ -66,6 +66,10 @@ class SubstepBodies {
               const Vec2& gravity, double h, const MotionLimits& limits,
               const WeldClusters& clusters, StepWorkers& workers);
   const std::vector<int>& overflowed() const { return overflowed_; }
+  /// The dynamic bodies' own turn-rate limits (empty after gather; WorldImpl fills them).
+  TurnCaps& turnCaps() { return turnCaps_; }
+  /// An entry's centre of mass as the step began.
+  const Vec2& center0(int entry) const { return sims_[entry].center0; }
 
   /// The row a constraint reads for the body in `slot` (the identity row when it is not moving).
   int64_t readRow(int slot) const {
@@ -163,6 +167,7 @@ class SubstepBodies {
   std::vector<int> overflowed_;  // slots, in slot order
   int dynamicCount_ = 0, movingCount_ = 0;
   MotionLimits limits_;
+  TurnCaps turnCaps_;
   ClusterRows clusterRows_;  // the welded clusters' members, by entry
 };
 

@@ -157,6 +157,7 @@ struct StepScratch {
   std::vector<Joint*> guardedJoints;
   // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.
   std::vector<std::pair<Vec2, double>> onePassStarts;
+  TurnCaps turnCaps;  // the one-pass solvers' (motion_limits.hpp)
   // Sub-steps' NGS passes (world_substeps.cpp): by worker, its verdicts on the pass: whether
   // every joint it solved was within the slop, the widest joint error and the deepest overlap.
   struct PassVerdict {
@@ -470,6 +471,24 @@ struct WorldImpl {
         Joint& joint = joints.items[j];
         joint.pairImpulse.setZero();
         joint.motorImpulse = joint.lowerImpulse = joint.upperImpulse = 0.0;
+      }
+    }
+  }
+  /// The turn caps (motion_limits.hpp, TurnCaps) of the active joints' dynamic bodies:
+  /// entryOf(slot) is a body's dynamic entry of `entries` (-1: none), centerOf(entry) its centre
+  /// of mass as the step began.
+  template <class EntryOf, class CenterOf>
+  void capTurnsByJointReach(TurnCaps& caps, int entries, const MotionLimits& limits,
+                            EntryOf entryOf, CenterOf centerOf) const {
+    caps.clear();
+    for (const int j : activeJoints) {
+      const Joint& joint = joints.items[j];
+      for (const auto& [slot, anchor] : {std::pair(joint.bodyA, joint.localAnchorA),
+                                         std::pair(joint.bodyB, joint.localAnchorB)}) {
+        const int entry = entryOf(slot);
+        if (entry < 0) continue;
+        const Vec2 arm = bodies.items[slot].xf.apply(anchor) - centerOf(entry);
+        caps.note(entry, entries, arm.norm(), limits);
       }
     }
   }

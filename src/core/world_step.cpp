@@ -369,11 +369,18 @@ void WorldImpl::integratePositions(double dt) {
   const StageClock clock(stage(&StepProfile::integrate));
   solverBodies.holdKinematicVelocities();
   const MotionLimits limits = MotionLimits::of(def, dt);
+  capTurnsByJointReach(
+      scratch.turnCaps, solverBodies.dynamicCount(), limits,
+      [&](int slot) {
+        const int entry = solverBodies.movingEntryOf(slot);
+        return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
+      },
+      [&](int entry) { return solverBodies[entry].center; });
   scratch.onePassStarts.resize(static_cast<size_t>(solverBodies.dynamicCount()));
   for (int e = 0; e < solverBodies.movingCount(); ++e) {
     SolverBody& body = solverBodies[e];
     if (solverBodies.isDynamic(e)) {
-      limits.apply(body.linearVelocity, body.angularVelocity);
+      limits.apply(body.linearVelocity, body.angularVelocity, scratch.turnCaps.rate(e, limits));
       scratch.onePassStarts[e] = {body.center, body.angle};
     }
     body.center += dt * body.linearVelocity;

@@ -274,6 +274,13 @@ void WorldImpl::solveSubsteps(double dt) {
   overflowedBodies.insert(overflowedBodies.end(), sb.overflowed().begin(), sb.overflowed().end());
   laps.lap(&StepProfile::prepare);
   colorConstraints();
+  capTurnsByJointReach(
+      sb.turnCaps(), sb.dynamicCount(), MotionLimits::of(def, h),
+      [&](int slot) {
+        const int entry = sb.entryOf(slot);
+        return sb.isDynamicEntry(entry) ? entry : -1;
+      },
+      [&](int entry) { return sb.center0(entry); });
   laps.lap(&StepProfile::coloring);
   if (soft) measureSoftStepStart();
   BundlePass pass = bundlePass(h);

@@ -473,11 +473,13 @@ class Soak {
           const JointDef& d = world_.jointDef(j);
           if (d.bodyA != it->second && d.bodyB != it->second) continue;
           const BodyId other = d.bodyA == it->second ? d.bodyB : d.bodyA;
-          fprintf(stderr, "     joint %d type %d to %s (%s, mass %g) at %s f %g length %g\n",
+          const JointState js = world_.jointState(j);
+          fprintf(stderr,
+                  "     joint %d type %d to %s (%s, mass %g) at %s f %g length %g anchors %s %s\n",
                   j.index, static_cast<int>(d.type), nameOf(other).c_str(),
                   world_.body(other).type == BodyType::Kinematic ? "kinematic" : "dynamic",
                   world_.body(other).mass, str(world_.body(other).center).c_str(), d.frequency,
-                  d.length);
+                  d.length, str(js.anchorA).c_str(), str(js.anchorB).c_str());
         }
         for (const ContactInfo& c : world_.contacts())
           if ((c.bodyA == it->second || c.bodyB == it->second))
