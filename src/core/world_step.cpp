@@ -335,7 +335,7 @@ void WorldImpl::solve(double dt) {
         return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
       },
       [&](int slot) { return solverBodies.view(slot); }, nullptr, nullptr, nullptr,
-      def.gravity.norm() * dt);
+      def.gravity.norm() * dt, def.maxLinearSpeed);
   contactSolver.prepare(contacts, solverBodies, def, dt);
   laps.lap(&StepProfile::prepare);
 
