@@ -158,6 +158,13 @@ struct StepScratch {
   // One-pass solvers (world_step.cpp): by dynamic entry, its centre and angle as the step began.
   std::vector<std::pair<Vec2, double>> onePassStarts;
   TurnCaps turnCaps;  // the one-pass solvers' (motion_limits.hpp)
+  // Bodies of joints left far open by the position passes, with their start (noteHeldOpen).
+  struct HeldOpen {
+    int slot;
+    Vec2 center0;
+    double angle0;
+  };
+  std::vector<HeldOpen> heldOpen;
   // Sub-steps' NGS passes (world_substeps.cpp): by worker, its verdicts on the pass: whether
   // every joint it solved was within the slop, the widest joint error and the deepest overlap.
   struct PassVerdict {
@@ -453,6 +460,27 @@ struct WorldImpl {
   /// Up to positionIterations passes over the joints in `slots` (and the contacts); returns the
   /// widest joint error the last pass met.
   double runPositionPasses(const std::vector<int>& slots, const PositionPasses& passes);
+  /// After the one-pass solvers' passes over `slots`: the dynamic bodies of the joints still
+  /// open wider than `open` (m or rad; 0: every one), for dropMotionUndone (world_step.cpp).
+  void noteHeldOpen(const std::vector<int>& slots, double open);
+  /// Once nothing else moves them this step: those bodies keep no more velocity than the motion
+  /// the step left them.
+  void dropMotionUndone();
+  /// noteHeldOpen on either path: viewOf(slot) is a joint's view of a body, note(slot) notes the
+  /// body if it is one to note (dynamic, not in a welded cluster).
+  template <class ViewOf, class Note>
+  void noteHeldOpenBodies(const std::vector<int>& slots, double open, ViewOf viewOf, Note note) {
+    for (const int j : slots) {
+      const Joint& joint = joints.items[j];
+      if (open > 0.0) {
+        const PositionError error =
+            jointPositionError(joint, viewOf(joint.bodyA), viewOf(joint.bodyB));
+        if (!(std::max(error.linear, error.angular) > open)) continue;
+      }
+      note(joint.bodyA);
+      note(joint.bodyB);
+    }
+  }
   /// The bodies that moved farther than the speculative margin, for continuous collision.
   void findFastSubstepBodies();
   /// Lists the joints the step solves (both solver paths): those with a body for which

@@ -560,6 +560,17 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
     }
     if (jointsOk && overlapsResolved(deepest, def.linearSlop)) break;
   }
+  if (widest > PositionGuard::kJudgedError) {  // world_step.cpp, noteHeldOpen
+    noteHeldOpenBodies(
+        activeJoints, PositionGuard::kJudgedError, [&](int slot) { return sb.view(slot); },
+        [&](int slot) {
+          const int e = sb.entryOf(slot);
+          if (!sb.isDynamicEntry(e)) return;
+          const auto [first, last] = sb.clusterRows().ofRow(e);
+          if (first != last) return;  // a welded cluster: its start is not a member's
+          scratch.heldOpen.push_back({slot, sb.sim(e).center0, sb.start(e).angle0});
+        });
+  }
   positionGuard.settle(widest);
 }
 
