@@ -86,11 +86,14 @@ class ContactSolver {
   SolverBodies* bodies_ = nullptr;  // this step's; entries may be added until the solve starts
 
   /// Baumgarte: marks crushed_ (by slot) the bodies pressed into overlaps from opposite sides
-  /// by bodies the step does not move.
+  /// by bodies the step does not move, directly or through a row of moving bodies.
   void findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies);
   /// Whether the contact gets no push out of its overlap: it presses a crushed body against a
-  /// body the step does not move, or touches a body whose push is withheld (withholdPush).
+  /// body the step does not move or another crushed body, or touches a body whose push is
+  /// withheld (withholdPush).
   bool getsNoPush(const Contact& contact, const SolverBodies& bodies) const;
+  static int sectorOf(const Vec2& direction);
+  static bool mayOppose(unsigned sectors);
 
   // Marks by slot for one step, with the slots marked listed so that clearing touches only them.
   struct SlotMarks {
@@ -114,10 +117,24 @@ class ContactSolver {
 
   std::vector<ContactConstraint> constraints_;
   std::vector<ContactConstraintExtra> extras_;  // by constraint
-  std::vector<Vec2> pushOfSlot_;                // findCrushed's scratch: the first push seen
-  std::vector<int> pushedSlots_;                // the slots set in it, to clear only them
-  SlotMarks crushed_;                           // this step (baumgarte, findCrushed)
-  SlotMarks unpushed_;                          // this step (withholdPush)
+  // findCrushed's scratch: by slot, the first push from a still body a moving body meets,
+  // directly (from kStill) or handed on by the moving body `from` (the still body's push).
+  static constexpr int kStill = -1;
+  static constexpr int kHandOnRounds = 8;  // the longest row of moving bodies handed a push
+  struct Backing {
+    Vec2 push = Vec2::Zero();
+    int from = kStill;
+    bool pushed = false;
+  };
+  std::vector<Backing> backing_;
+  std::vector<int> backedSlots_;  // the slots set in it, to clear only them
+  struct PressedPair {
+    int a, b;
+    Vec2 normal;  // from a to b
+  };
+  std::vector<PressedPair> pressedPairs_;  // overlaps between two moving bodies
+  SlotMarks crushed_;                      // this step (baumgarte, findCrushed)
+  SlotMarks unpushed_;                     // this step (withholdPush)
 };
 
 }  // namespace impulse2d

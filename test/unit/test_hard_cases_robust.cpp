@@ -121,36 +121,51 @@ TEST(HardCasesRobust, AJointNeverDragsABodyThroughAStaticWall) {
 // impulses shot the box out at 25 m/s (the core soak's seeds 246 and 291: 67 and 157 m/s). A
 // crushed body's contacts with bodies the step does not move get no push (contact_solver.cpp):
 // the box moves no faster than the slab plus the fastest push out of an overlap, and is not
-// pressed into the ground.
+// pressed into the ground. Two boxes pressed into each other between them are crushed as one
+// (seed 526: a thin box 0.25 m inside another, the pair wedged between two still bodies, the
+// contacts grown to 2,300 N s until they flung both at 170 m/s).
 TEST(HardCasesRobust, ABoxCrushedUnderAStoppedKinematicSlabIsNotShotOut) {
   for (const SolverType solver : kSolvers) {
-    for (const double slide : {-1.0, 1.0}) {  // m/s
-      World world;
-      world.settings().solver = solver;
-      addBox(world, "ground", Vec2(0.0, -1.0), 20.0, 2.0, BodyType::Static);
-      const BodyId box = addBox(world, "box", Vec2(0.0, 0.5), 1.0, 1.0, BodyType::Dynamic);
-      const BodyId slab = addBox(world, "slab", Vec2(0.0, 1.25), 3.0, 1.0, BodyType::Kinematic);
-      ASSERT_TRUE(world.setTransform(slab, Vec2(0.0, 1.25), 0.3));
-      double fastest = 0.0, lowest = 1e9;
-      for (int step = 0; step < 600; ++step) {
-        if (step == 300) {
-          ASSERT_TRUE(world.setVelocity(slab, Vec2(slide, 0.0), 0.0));
-        } else if (step == 310) {
-          ASSERT_TRUE(world.setVelocity(slab, Vec2::Zero(), 0.0));
+    for (const int boxes : {1, 2}) {
+      for (const double slide : {-1.0, 1.0}) {  // m/s
+        World world;
+        world.settings().solver = solver;
+        addBox(world, "ground", Vec2(0.0, -1.0), 20.0, 2.0, BodyType::Static);
+        std::vector<BodyId> pressed;
+        // Boxes of 1 m, each 0.1 m into the one below; the slab's overlap makes it 0.25 m in all.
+        for (int i = 0; i < boxes; ++i) {
+          pressed.push_back(addBox(world, "box" + std::to_string(i), Vec2(0.0, 0.5 + 0.9 * i), 1.0,
+                                   1.0, BodyType::Dynamic));
         }
-        world.step();
-        if (step >= 300) fastest = std::max(fastest, world.body(box).linearVelocity.norm());
-        lowest = std::min(lowest, world.body(box).center.y());
+        const double overlapBelow = 0.1 * (boxes - 1);
+        const BodyId slab = addBox(world, "slab", Vec2(0.0, 1.25 + 0.9 * (boxes - 1)), 3.0, 1.0,
+                                   BodyType::Kinematic);
+        ASSERT_TRUE(world.setTransform(slab, Vec2(0.0, 1.25 + 0.9 * (boxes - 1) + overlapBelow),
+                                       boxes == 1 ? 0.3 : 0.0));
+        double fastest = 0.0, lowest = 1e9;
+        for (int step = 0; step < 600; ++step) {
+          if (step == 300) {
+            ASSERT_TRUE(world.setVelocity(slab, Vec2(slide, 0.0), 0.0));
+          } else if (step == 310) {
+            ASSERT_TRUE(world.setVelocity(slab, Vec2::Zero(), 0.0));
+          }
+          world.step();
+          for (const BodyId box : pressed) {
+            if (step >= 300) fastest = std::max(fastest, world.body(box).linearVelocity.norm());
+          }
+          lowest = std::min(lowest, world.body(pressed[0]).center.y());
+        }
+        hard_case::report(boxes == 1 ? "crushed_box" : "crushed_pair", solver,
+                          hard_case::figures("slide %+.0f m/s: fastest %.3f m/s, centre at least "
+                                             "%.3f m",
+                                             slide, fastest, lowest));
+        const double bound = std::abs(slide) + world.settings().maxPushVelocity + 0.5;
+        EXPECT_LT(fastest, bound) << solverName(solver) << " " << boxes << " slide " << slide;
+        // The 0.25 m of overlap is shared between the ground and the slab, never added to.
+        EXPECT_GT(lowest, 0.5 - 0.25 + 0.05)
+            << solverName(solver) << " " << boxes << ": not pressed into the ground";
+        EXPECT_EQ(world.removedBodyCount(), 0u);
       }
-      hard_case::report("crushed_box", solver,
-                        hard_case::figures("slide %+.0f m/s: fastest %.3f m/s, centre at least "
-                                           "%.3f m",
-                                           slide, fastest, lowest));
-      const double bound = std::abs(slide) + world.settings().maxPushVelocity + 0.5;
-      EXPECT_LT(fastest, bound) << solverName(solver) << " slide " << slide;
-      // The 0.25 m of overlap is shared between the ground and the slab, never added to.
-      EXPECT_GT(lowest, 0.5 - 0.25 + 0.05) << solverName(solver) << ": not pressed into the ground";
-      EXPECT_EQ(world.removedBodyCount(), 0u);
     }
   }
 }
@@ -339,8 +354,10 @@ TEST(HardCasesRobust, AFarOpenWeldHeldAgainstAWallDoesNotPumpItsBody) {
 //   seed 159: a box on a far-open weld beside a wall, sped up by its spring while the position
 //           passes and the wall held it still (ngs; see AFarOpenWeldHeldAgainstAWall...).
 //   seeds 375, 437: a box spun up by a spring anchored 15-18 m out (substep; TurnCaps).
+//   seeds 412, 526: two moving bodies pressed into each other between still ones, their
+//           contacts grown to 1,200-2,300 N s, flung at 47 and 170 m/s (baumgarte; crushed rows).
 TEST(HardCasesRobust, SoakSeedsThatOnceFailedNowHold) {
-  for (const uint64_t seed : {1, 2, 3, 64, 72, 93, 159, 246, 271, 291, 375, 437}) {
+  for (const uint64_t seed : {1, 2, 3, 64, 72, 93, 159, 246, 271, 291, 375, 412, 437, 526}) {
     for (const SolverType solver : kSolvers) {
       soak::Options options;
       options.seed = seed;
