@@ -614,8 +614,10 @@ class Soak {
       const Body& b = world_.body(c.bodyB);
       if (a.type == BodyType::Kinematic) held.insert(c.bodyB.index);
       if (b.type == BodyType::Kinematic) held.insert(c.bodyA.index);
-      for (const Body* body : {&a, &b}) {  // moving: not resting
-        if (body->type == BodyType::Dynamic && body->linearVelocity.norm() > 0.1) {
+      for (const Body* body : {&a, &b}) {  // moving or spinning: not resting
+        const double surfaceSpeed =
+            body->linearVelocity.norm() + std::abs(body->angularVelocity) * body->maxExtent;
+        if (body->type == BodyType::Dynamic && surfaceSpeed > 0.1) {
           held.insert(body->id.index);
         }
       }
@@ -699,13 +701,19 @@ class Soak {
     // A pile at rest may not keep a deep overlap: it must be coming apart (by a tenth over the
     // last 100 steps) or be gone.
     constexpr double kDeep = 0.05;  // m, ten slops
+    auto nameOf = [&](int slot) {
+      for (const auto& [name, id] : bodies_) {
+        if (id.index == slot) return name;
+      }
+      return "slot " + std::to_string(slot);
+    };
     for (const auto& [pair, late] : freeOverlaps()) {
       ++report_.checks;
       const auto before = early.find(pair);
       if (late > kDeep && before != early.end() && late > 0.9 * before->second) {
         violation("a resting pile still overlaps by " + std::to_string(late) + " m (" +
                   std::to_string(before->second) + " m 100 steps before), bodies " +
-                  std::to_string(pair.first) + " and " + std::to_string(pair.second));
+                  nameOf(pair.first) + " and " + nameOf(pair.second));
       }
     }
   }
