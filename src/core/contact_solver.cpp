@@ -51,10 +51,10 @@ using HWY_NAMESPACE::wellConditioned;
 void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies) {
   crushed_.clear();  // last step's
   pressedPairs_.clear();
-  auto backingOf = [&](int slot) -> Backing& {
+  // Sized in the first pass for every slot the second reads, so that no reference into it moves.
+  auto ensureBacking = [&](int slot) {
     const size_t needed = static_cast<size_t>(slot) + 1;
     if (backing_.size() < needed) backing_.resize(needed);
-    return backing_[static_cast<size_t>(slot)];
   };
   // Pushes from still bodies, the first met on each body (pushes are unit vectors), and the
   // twelfths of the circle they point into.
@@ -66,6 +66,7 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
     if (!overlapping) continue;
     const bool movesA = bodies.isActive(contact.bodyA), movesB = bodies.isActive(contact.bodyB);
     if (movesA && movesB) {
+      ensureBacking(std::max(contact.bodyA, contact.bodyB));
       pressedPairs_.push_back({contact.bodyA, contact.bodyB, m.normal});
       continue;
     }
@@ -73,7 +74,8 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
     const int slot = movesA ? contact.bodyA : contact.bodyB;
     const Vec2 push = movesA ? Vec2(-m.normal) : m.normal;  // into the body that moves
     sectors |= 1u << sectorOf(push);
-    Backing& backing = backingOf(slot);
+    ensureBacking(slot);
+    Backing& backing = backing_[static_cast<size_t>(slot)];
     if (!backing.pushed) {
       backing = {push, kStill, true};
       backedSlots_.push_back(slot);
@@ -95,8 +97,8 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
     for (int round = 0; round < kHandOnRounds && !pressedPairs_.empty(); ++round) {
       bool handedOn = false;
       for (const PressedPair& pair : pressedPairs_) {
-        Backing& backedA = backingOf(pair.a);
-        Backing& backedB = backingOf(pair.b);
+        Backing& backedA = backing_[static_cast<size_t>(pair.a)];
+        Backing& backedB = backing_[static_cast<size_t>(pair.b)];
         const bool aPressesB = backedA.pushed && backedA.push.dot(pair.normal) > 0.5;
         const bool bPressesA = backedB.pushed && backedB.push.dot(pair.normal) < -0.5;
         if (aPressesB && bPressesA) {
@@ -121,11 +123,11 @@ void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const Solv
   backedSlots_.clear();
 }
 
-// Which twelfth of the circle a unit vector points into: 0 from -pi.
+// Which twelfth of the circle a unit vector points into: 0 from -pi (and 0 for one not finite).
 int ContactSolver::sectorOf(const Vec2& direction) {
-  constexpr double kTwelfth = M_PI / 6.0;
-  const int sector = static_cast<int>((std::atan2(direction.y(), direction.x()) + M_PI) / kTwelfth);
-  return std::clamp(sector, 0, 11);
+  const double twelfths = (std::atan2(direction.y(), direction.x()) + kPi) / (kPi / 6.0);
+  if (!(twelfths > 0.0)) return 0;  // before the cast: a NaN or negative int is undefined
+  return std::min(static_cast<int>(twelfths), 11);
 }
 
 // Whether two pushes in the marked twelfths may be more than 120 degrees apart (dot < -0.5):
