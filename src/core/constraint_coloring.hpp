@@ -15,6 +15,7 @@
 // A body with more constraints than colours sends the rest to the overflow, solved one by one.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

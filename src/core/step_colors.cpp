@@ -26,7 +26,7 @@ int startColor(uint64_t key) {
 void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
                         const std::vector<std::pair<int, int>>& jointBodies,
                         const SubstepBodies& bodies, int minSize, StepWorkers& workers) {
-  ConstraintColoring coloring;
+  ConstraintColoring& coloring = coloring_;  // kept: a step allocated it anew
   coloring.reset(bodies.dynamicCount());
   constexpr int kOverflowIndex = ConstraintColoring::kMaxColors;  // the overflow's, in `count`
   colorOfContact_.resize(contacts.size());

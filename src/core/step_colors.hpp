@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "constraint_coloring.hpp"
 #include "contact.hpp"
 #include "step_workers.hpp"
 #include "substep_bodies.hpp"
@@ -45,6 +46,7 @@ class StepColors {
   std::vector<int> jointColor_;                  // by joint given to assign(), scratch
   std::vector<std::vector<int>> jointsOfColor_;  // by colour kept, the overflow last
   std::vector<int> contactCount_;                // by colour kept, the overflow last
+  ConstraintColoring coloring_;                  // scratch
 };
 
 }  // namespace impulse2d

@@ -102,7 +102,7 @@ void StepWorkers::setThreads(int threads) {
   shared_.reset(threads > 1 ? new Shared(threads) : nullptr);
 }
 
-void StepWorkers::session(const std::function<void()>& body) {
+void StepWorkers::session(FunctionRef<void()> body) {
   if (threads_ == 1) {
     body();
     return;
@@ -124,7 +124,7 @@ void StepWorkers::session(const std::function<void()>& body) {
   });
 }
 
-void StepWorkers::stage(int blocks, const Block& fn) {
+void StepWorkers::stage(int blocks, Block fn) {
   if (!inSession_ || blocks <= 1) {
     for (int block = 0; block < blocks; ++block) fn(block, 0);
     return;
