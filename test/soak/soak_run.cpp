@@ -26,6 +26,8 @@ constexpr double kArenaSlack = 0.5 * kWall;
 constexpr size_t kMaxOwnBodies = 160;
 constexpr size_t kMaxOwnJoints = 140;
 constexpr size_t kEditsKept = 24;
+// JointType's order, for --watch.
+constexpr const char* kJointTypeNames[] = {"revolute", "prismatic", "weld", "distance"};
 // Kinematic bodies are driven around the middle, far enough from the walls that they cannot
 // squeeze a dynamic body into one.
 constexpr double kKinematicHalfWidth = 6.0, kKinematicLow = 4.0, kKinematicHigh = 16.0;
@@ -475,8 +477,8 @@ class Soak {
           const BodyId other = d.bodyA == it->second ? d.bodyB : d.bodyA;
           const JointState js = world_.jointState(j);
           fprintf(stderr,
-                  "     joint %d type %d to %s (%s, mass %g) at %s f %g length %g anchors %s %s\n",
-                  j.index, static_cast<int>(d.type), nameOf(other).c_str(),
+                  "     joint %d %s to %s (%s, mass %g) at %s f %g length %g anchors %s %s\n",
+                  j.index, kJointTypeNames[static_cast<int>(d.type)], nameOf(other).c_str(),
                   world_.body(other).type == BodyType::Kinematic ? "kinematic" : "dynamic",
                   world_.body(other).mass, str(world_.body(other).center).c_str(), d.frequency,
                   d.length, str(js.anchorA).c_str(), str(js.anchorB).c_str());
