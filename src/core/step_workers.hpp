@@ -17,8 +17,8 @@
 namespace impulse2d {
 
 /// A callable taken by reference, for calls that return before it goes away (a stage, a
-/// session). std::function copied each lambda of more than two pointers to the heap: bridge20
-/// made 21 allocations a step that way, 7 % of its time with their frees.
+/// session). std::function copied each lambda of more than two pointers to the heap, on one
+/// thread too: with the colouring's table, 17 allocations a step on bridge20 (now none).
 template <class Signature>
 class FunctionRef;
 template <class Result, class... Args>

@@ -315,12 +315,7 @@ TEST(HardCasesRobust, AFarOpenWeldHeldAgainstAWallDoesNotPumpItsBody) {
     def.angle = -1.646;
     def.shapes.emplace_back().size = Vec2(0.39, 1.45);
     const BodyId box = world.createBody(def);
-    JointDef weld;
-    weld.type = JointType::Weld;
-    weld.bodyA = still;
-    weld.bodyB = box;
-    weld.anchor = Vec2(2.8, 2.84);
-    weld.frequency = 5.2;
+    const JointDef weld = test::weldDef(still, box, Vec2(2.8, 2.84), 5.2);
     ASSERT_TRUE(world.createJoint(weld).valid());
     ASSERT_TRUE(world.setTransform(still, Vec2(3.6, 8.62), 1.0));  // 9 m open, 1 rad off
     const Body& b = world.body(box);

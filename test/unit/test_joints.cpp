@@ -193,12 +193,7 @@ TEST(Weld, SoftWeldSwingsAtItsFrequency) {
     World world(worldDef(solver));
     const BodyId wall = addBox(world, "wall", Vec2(-1.0, 0.0), 0.2, 0.2, BodyType::Static);
     const BodyId paddle = addBox(world, "paddle", Vec2(1.0, 0.0), 2.0, 0.3, BodyType::Dynamic);
-    JointDef joint;
-    joint.type = JointType::Weld;
-    joint.bodyA = wall;
-    joint.bodyB = paddle;
-    joint.anchor = Vec2(1.0, 0.0);
-    joint.frequency = 2.0;
+    const JointDef joint = test::weldDef(wall, paddle, Vec2(1.0, 0.0), 2.0);
     const JointId id = world.createJoint(joint);
     ASSERT_TRUE(id.valid());
     world.setVelocity(paddle, Vec2::Zero(), 1.0);

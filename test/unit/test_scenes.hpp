@@ -48,6 +48,16 @@ inline JointDef distanceDef(BodyId a, BodyId b, const Vec2& anchor) {
   return joint;
 }
 
+inline JointDef weldDef(BodyId a, BodyId b, const Vec2& anchor, double frequency = 0.0) {
+  JointDef joint;
+  joint.type = JointType::Weld;
+  joint.bodyA = a;
+  joint.bodyB = b;
+  joint.anchor = anchor;
+  joint.frequency = frequency;
+  return joint;
+}
+
 /// Collision shapes centred on their body's origin.
 inline Shape boxShape(double w, double h) {
   Shape s;
