@@ -54,15 +54,18 @@ class StepWorkers {
   /// Runs `body` with the helpers at hand: stage() calls inside it run in parallel.
   void session(FunctionRef<void()> body);
   /// Runs fn(block, worker) for every block in [0, blocks) and returns when all are done; worker
-  /// is in [0, threads()). Outside a session, or on one thread, the blocks run in order.
-  void stage(int blocks, Block fn);
+  /// is in [0, threads()). Outside a session, on one thread, or not `shared` (work too small to
+  /// pay for handing it over), the blocks run in order on this thread as worker 0.
+  void stage(int blocks, Block fn, bool shared = true);
   /// A stage over [0, count) cut into blocks of `perBlock`: fn(begin, end, worker) for each.
   template <class Fn>
-  void forRanges(int count, int perBlock, const Fn& fn) {
-    stage((count + perBlock - 1) / perBlock, [&](int block, int worker) {
-      const int begin = block * perBlock;
-      fn(begin, std::min(count, begin + perBlock), worker);
-    });
+  void forRanges(int count, int perBlock, const Fn& fn, bool shared = true) {
+    stage((count + perBlock - 1) / perBlock,
+          [&](int block, int worker) {
+            const int begin = block * perBlock;
+            fn(begin, std::min(count, begin + perBlock), worker);
+          },
+          shared);
   }
 
  private:

@@ -41,6 +41,12 @@ constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 // kLeastBlocksPerThread blocks of it.
 constexpr int kBundlesPerBlock = 4;
 constexpr int kLeastBlocksPerThread = 4;
+// A colour pass of fewer bundles than this runs on the stepping thread alone: handing a stage to
+// another thread costs a few lines passed between the cores (the stage, its blocks' counters, the
+// bodies), measured at 2-3 us a stage on a VM whose cores pass a line in 250 ns, while a bundle
+// takes 20-40 ns. Shared, pyramid20's colours of 5-10 bundles made two threads 4.5x slower than
+// one. Which thread runs a block never changes the result.
+constexpr int kLeastSharedBundles = 32;
 constexpr int kJointsPerBlock = 32;
 constexpr int kJointBundlesPerBlock = 4;
 // Joints copied to and from their colours' order per block, and the joint lanes' bundles filled
@@ -164,7 +170,7 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
   const int count = static_cast<int>(scalar.size());
   const int perBlock = bundlesPerBlock(bundles, stepWorkers.threads(), kJointBundlesPerBlock);
   const int bundleBlocks = blocksOf(bundles, perBlock);
-  stepWorkers.stage(bundleBlocks + blocksOf(count, kJointsPerBlock), [&](int block, int worker) {
+  const auto runBlock = [&](int block, int worker) {
     if (block < bundleBlocks) {
       JointLaneArgs args = jointLaneArgs;
       args.sinkOffset = static_cast<int32_t>(substepBodies.sinkRow(worker) * kStateDoubles);
@@ -181,7 +187,9 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
     const int from = (block - bundleBlocks) * kJointsPerBlock;
     const int to = std::min(count, from + kJointsPerBlock);
     for (int i = from; i < to; ++i) onJoint<access>(scalar[i], worker, jointOp);
-  });
+  };
+  stepWorkers.stage(bundleBlocks + blocksOf(count, kJointsPerBlock), runBlock,
+                    bundles + count / kJointLanes >= kLeastSharedBundles);
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
@@ -254,9 +262,10 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
   for (int color = 0; color < colors; ++color) {
     const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
     const int perBlock = bundlesPerBlock(end - first, stepWorkers.threads(), kBundlesPerBlock);
-    stepWorkers.forRanges(end - first, perBlock, [&](int begin, int last, int worker) {
+    const auto runRange = [&](int begin, int last, int worker) {
       bundleOp(sink(worker), first + begin, first + last, false, worker);
-    });
+    };
+    stepWorkers.forRanges(end - first, perBlock, runRange, end - first >= kLeastSharedBundles);
   }
   // The overflow: one after the other, on this thread.
   bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);

@@ -1,5 +1,6 @@
 // StepWorkers (src/core/step_workers.hpp): every block of a stage runs exactly once, on one
-// thread or several, with the callable taken by reference (FunctionRef), not copied.
+// thread or several, with the callable taken by reference (FunctionRef), not copied; a stage too
+// small to share runs on the stepping thread.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -32,6 +33,27 @@ TEST(StepWorkers, EveryRangeOfAStageRunsOnceOnAnyNumberOfThreads) {
     EXPECT_EQ(sessions, 1);
     EXPECT_EQ(stages, 5);
     for (int i = 0; i < kCount; ++i) ASSERT_EQ(runs[i].load(), 5 * 2) << "item " << i;
+  }
+}
+
+TEST(StepWorkers, AStageNotSharedRunsInOrderOnTheSteppingThread) {
+  StepWorkers workers;
+  workers.setThreads(2);
+  std::vector<int> order;  // no atomics: only the stepping thread may touch it
+  std::vector<int> workersSeen;
+  workers.session([&] {
+    workers.forRanges(
+        100, 10,
+        [&](int begin, int, int worker) {
+          order.push_back(begin);
+          workersSeen.push_back(worker);
+        },
+        /*shared=*/false);
+  });
+  ASSERT_EQ(order.size(), 10u);
+  for (int block = 0; block < 10; ++block) {
+    EXPECT_EQ(order[block], 10 * block);
+    EXPECT_EQ(workersSeen[block], 0);
   }
 }
 
