@@ -17,12 +17,14 @@ failed_steps=0
 
 step() {  # step NAME COMMAND...: runs a stage, counts it as a failure when it fails
   local name="$1"; shift
+  local started=$SECONDS
   echo "=== $name" >&2
   if ! "$@"; then
-    echo "=== $name FAILED" >&2
+    echo "=== $name FAILED ($((SECONDS - started)) s)" >&2
     failed_steps=$((failed_steps + 1))
     return 1
   fi
+  echo "=== $name done ($((SECONDS - started)) s)" >&2  # CI should stay under 30 minutes
 }
 
 step "install dependencies" "$REPO/scripts/install_deps.sh" || { echo "0 passed, 1 failed"; exit 1; }
