@@ -16,9 +16,8 @@ add_dependencies(impulse2d_load_test impulse2d_node ${PROJECT_NAME}_generate_mes
 
 # Issue 14's recipe at ~rate 0: a URDF arm and 50 boxes with friction left out, none lost
 # (recipe.test, ~20 s).
-add_rostest_gtest(impulse2d_recipe_test test/ros/recipe.test
-  test/ros/world_test_main.cpp test/ros/world_test_util.cpp test/ros/recipe_test.cpp)
-target_link_libraries(impulse2d_recipe_test ${catkin_LIBRARIES})
+add_rostest_gtest(impulse2d_recipe_test test/ros/recipe.test test/ros/recipe_test.cpp)
+target_link_libraries(impulse2d_recipe_test impulse2d_world_test_common ${catkin_LIBRARIES})
 add_dependencies(impulse2d_recipe_test impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
 
 # SimWorld's and the conversions' limits, without a master.

@@ -34,9 +34,8 @@ if(NOT IMPULSE2D_CORE_ONLY)
     DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/test/urdf)
 
   if(CATKIN_ENABLE_TESTING)
-    add_rostest_gtest(impulse2d_urdf_tests test/ros/urdf.test test/ros/urdf_test.cpp
-      test/ros/world_test_main.cpp test/ros/world_test_util.cpp)
-    target_link_libraries(impulse2d_urdf_tests ${catkin_LIBRARIES})
+    add_rostest_gtest(impulse2d_urdf_tests test/ros/urdf.test test/ros/urdf_test.cpp)
+    target_link_libraries(impulse2d_urdf_tests impulse2d_world_test_common ${catkin_LIBRARIES})
     add_dependencies(impulse2d_urdf_tests impulse2d_node ${PROJECT_NAME}_generate_messages_cpp)
     roslaunch_add_file_check(launch/urdf_demo.launch rviz:=false)
   endif()
