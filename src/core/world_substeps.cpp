@@ -41,12 +41,6 @@ constexpr double kMaxContactHertzPerSubstepRate = 0.15;
 // kLeastBlocksPerThread blocks of it.
 constexpr int kBundlesPerBlock = 4;
 constexpr int kLeastBlocksPerThread = 4;
-// A colour pass of fewer bundles than this runs on the stepping thread alone: handing a stage to
-// another thread costs a few lines passed between the cores (the stage, its blocks' counters, the
-// bodies), measured at 2-3 us a stage on a VM whose cores pass a line in 250 ns, while a bundle
-// takes 20-40 ns. Shared, pyramid20's colours of 5-10 bundles made two threads 4.5x slower than
-// one. Which thread runs a block never changes the result.
-constexpr int kLeastSharedBundles = 32;
 constexpr int kJointsPerBlock = 32;
 constexpr int kJointBundlesPerBlock = 4;
 // Joints copied to and from their colours' order per block, and the joint lanes' bundles filled
@@ -56,10 +50,18 @@ constexpr int kJointBundlesPerCopyBlock = kJointsPerCopyBlock / kJointLanes;
 
 int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock; }
 
-// A colour's bundles (of contacts or joints) go in blocks of `most`, or finer (down to a bundle)
-// where that would leave a thread fewer than kLeastBlocksPerThread blocks: the last colours of a
-// pile are small (v3_compounds ends in colours of 3 to 15 bundles), and in blocks of four most of
-// such a colour ran on one thread while the other waited. Blocks never change what is computed.
+// Whether a colour pass of this many bundles (of contacts or joints) is shared among the threads.
+// Handing a stage to another thread passes a few lines between the cores (the stage, its blocks'
+// counters, the bodies), measured at 2-3 us a stage on a VM whose cores pass a line in 250 ns,
+// while a bundle takes 20-40 ns: shared, pyramid20's colours of 5-10 bundles made two threads
+// 4.5x slower than one. Which thread runs a block never changes the result.
+constexpr int kLeastSharedBundles = 32;
+bool worthSharing(int bundles) { return bundles >= kLeastSharedBundles; }
+
+// A shared colour's bundles go in blocks of `most`, or finer (down to a bundle) where that would
+// leave a thread fewer than kLeastBlocksPerThread blocks: in blocks of four, most of a colour of a
+// few dozen bundles ran on one thread while the others waited (v3_compounds ends in small
+// colours). Blocks never change what is computed.
 int bundlesPerBlock(int bundles, int threads, int most) {
   return std::clamp(bundles / (kLeastBlocksPerThread * threads), 1, most);
 }
@@ -189,7 +191,7 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
     for (int i = from; i < to; ++i) onJoint<access>(scalar[i], worker, jointOp);
   };
   stepWorkers.stage(bundleBlocks + blocksOf(count, kJointsPerBlock), runBlock,
-                    bundles + count / kJointLanes >= kLeastSharedBundles);
+                    worthSharing(bundles + count / kJointLanes));
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
@@ -265,7 +267,7 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
     const auto runRange = [&](int begin, int last, int worker) {
       bundleOp(sink(worker), first + begin, first + last, false, worker);
     };
-    stepWorkers.forRanges(end - first, perBlock, runRange, end - first >= kLeastSharedBundles);
+    stepWorkers.forRanges(end - first, perBlock, runRange, worthSharing(end - first));
   }
   // The overflow: one after the other, on this thread.
   bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);
