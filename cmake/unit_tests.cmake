@@ -23,4 +23,8 @@ endif()
 target_include_directories(impulse2d_unit_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/core
   ${PROJECT_SOURCE_DIR}/src/scene ${PROJECT_SOURCE_DIR}/test/soak)
 target_compile_definitions(impulse2d_unit_tests PRIVATE ${IMPULSE2D_TEST_DEFINES})
+# The headers nearly every test source reads: parsing them was most of each source's compile
+# (gtest, Eigen and world.hpp alone 3.7 s of test_world.cpp's 4-5 s), now done once.
+target_precompile_headers(impulse2d_unit_tests PRIVATE <gtest/gtest.h> <impulse2d/world.hpp>
+  <impulse2d/scene.hpp> <algorithm> <cmath> <random> <string> <vector>)
 add_dependencies(impulse2d_unit_tests impulse2d_sim)
