@@ -42,11 +42,31 @@ fi
 # Further stages, one file each, in name order: scripts/test.d/NN-name.sh. Each runs with REPO,
 # IMPULSE2D_WS (the built catkin workspace) and STAGE_RESULTS (a folder for its JUnit XML, which
 # is counted below) set; a non-zero exit counts as one failure.
+# But the stages of ALONGSIDE, which run in the background while another one does: started with
+# it, waited for when it ends, their output printed then. 70-examples mostly waits (worlds coming
+# up, `rostopic pub -1`'s 3 s latch) and checks what commands print, not how fast; 30-fuzz is a
+# compile and time-bounded fuzzing, which only does fewer runs when it shares the cores. Nothing
+# timed runs beside them (the ROS soak's 1 s bound, the rostests' wall-clock nodes).
+declare -A ALONGSIDE=([30-fuzz]=70-examples)
+run_stage() {  # run_stage NAME
+  mkdir -p "$RESULTS/$1"
+  REPO="$REPO" STAGE_RESULTS="$RESULTS/$1" step "$1" bash "$REPO/scripts/test.d/$1.sh"
+}
 for stage in "$REPO"/scripts/test.d/*.sh; do
   [ -e "$stage" ] || continue
   name="$(basename "$stage" .sh)"
-  mkdir -p "$RESULTS/$name"
-  REPO="$REPO" STAGE_RESULTS="$RESULTS/$name" step "$name" bash "$stage" >&2
+  [[ " ${ALONGSIDE[*]} " == *" $name "* ]] && continue  # runs beside its partner
+  partner="${ALONGSIDE[$name]:-}"
+  if [ -n "$partner" ]; then
+    echo "=== $partner runs alongside $name" >&2
+    run_stage "$partner" >"$RESULTS/$partner.out" 2>&1 &
+    partner_pid=$!
+  fi
+  run_stage "$name" >&2
+  if [ -n "$partner" ]; then
+    wait "$partner_pid" || failed_steps=$((failed_steps + 1))
+    cat "$RESULTS/$partner.out" >&2
+  fi
 done
 
 # Count test cases from every JUnit XML written (gtest and rostest both write them).
