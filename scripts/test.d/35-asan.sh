@@ -6,15 +6,15 @@
 # run as a child process, instrumented too), the ROS unit tests, and the rostests against
 # impulse2d_node and against the nodelet in Debian's nodelet manager. What is instrumented is the
 # product: the libraries (engine, scene, URDF, devices, ROS layer), the node, the plugin, the CLI
-# and the wanderer. The test programs' own code (gtest sources, rostest clients) is not
-# (cmake/sanitize_tests.cmake): it runs with the sanitizers' runtimes and calls instrumented
-# libraries, and compiling it instrumented was half of this build.
+# and the wanderer. The gtest programs' own code is not (cmake/sanitize_tests.cmake): it runs with
+# the sanitizers' runtimes and calls instrumented libraries, and compiling it instrumented was half
+# of this build. The rostests' clients are the release build's (CLIENTS below).
 #
 # Fails on a failing test, a test program's non-zero exit, and any sanitizer report from any of
 # those processes. Reports do not reach the tests' XML: ASan's and LeakSanitizer's go to
 # $STAGE_RESULTS/sanitizer/ (log_path), UBSan's to the output kept in $STAGE_RESULTS; all are
 # counted into one extra JUnit case, no_sanitizer_reports. Leak checking is on.
-# Bound: build ~8 min on 2 cores (the libraries, node, plugin, CLI and test programs; -O1 -g1
+# Bound: build ~8 min on 2 cores (the libraries, node, plugin, CLI and gtest programs; -O1 -g1
 # below), run ~3 min (the unit tests alongside the rostests).
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
