@@ -170,7 +170,13 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
   const int bundles = jointLanes.bundleStart(color + 1) - firstBundle;
   const std::vector<int>& scalar = jointLanes.scalarJoints(color);
   const int count = static_cast<int>(scalar.size());
-  const int perBlock = bundlesPerBlock(bundles, stepWorkers.threads(), kJointBundlesPerBlock);
+  // Not shared, the colour's bundles go to the kernels in one call and its other joints in one
+  // block, as overColors does with the contacts' colours: blocks only serve sharing.
+  const bool shared = worthSharing(bundles + count / kJointLanes) && stepWorkers.threads() > 1;
+  const int perBlock = shared
+                           ? bundlesPerBlock(bundles, stepWorkers.threads(), kJointBundlesPerBlock)
+                           : std::max(1, bundles);
+  const int jointsPerBlock = shared ? kJointsPerBlock : std::max(1, count);
   const int bundleBlocks = blocksOf(bundles, perBlock);
   const auto runBlock = [&](int block, int worker) {
     if (block < bundleBlocks) {
@@ -186,12 +192,11 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
       }
       return;
     }
-    const int from = (block - bundleBlocks) * kJointsPerBlock;
-    const int to = std::min(count, from + kJointsPerBlock);
+    const int from = (block - bundleBlocks) * jointsPerBlock;
+    const int to = std::min(count, from + jointsPerBlock);
     for (int i = from; i < to; ++i) onJoint<access>(scalar[i], worker, jointOp);
   };
-  stepWorkers.stage(bundleBlocks + blocksOf(count, kJointsPerBlock), runBlock,
-                    worthSharing(bundles + count / kJointLanes));
+  stepWorkers.stage(bundleBlocks + blocksOf(count, jointsPerBlock), runBlock, shared);
 }
 
 template <WorldImpl::JointAccess access, class JointOp>
@@ -261,13 +266,23 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
     mine.sinkOffset = static_cast<int32_t>(sb.sinkRow(worker) * kStateDoubles);
     return mine;
   };
+  // Colours not shared run on this thread, a run of them in one call: their bundles follow one
+  // another, and one call solves them in the same order. Cut into blocks of a few bundles, each
+  // block a call (a dispatch, a pass copied), pyramid20 spent a tenth of its step calling.
+  int unshared = contactBundles.colorBegin(0);  // the first bundle of the run not yet solved
   for (int color = 0; color < colors; ++color) {
     const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
+    if (!worthSharing(end - first) || stepWorkers.threads() == 1) continue;
+    if (unshared < first) bundleOp(sink(0), unshared, first, false, 0);
     const int perBlock = bundlesPerBlock(end - first, stepWorkers.threads(), kBundlesPerBlock);
     const auto runRange = [&](int begin, int last, int worker) {
       bundleOp(sink(worker), first + begin, first + last, false, worker);
     };
-    stepWorkers.forRanges(end - first, perBlock, runRange, worthSharing(end - first));
+    stepWorkers.forRanges(end - first, perBlock, runRange);
+    unshared = end;
+  }
+  if (colors > 0 && unshared < contactBundles.colorEnd(colors - 1)) {
+    bundleOp(sink(0), unshared, contactBundles.colorEnd(colors - 1), false, 0);
   }
   // The overflow: one after the other, on this thread.
   bundleOp(sink(0), contactBundles.overflowBegin(), contactBundles.bundleCount(), true, 0);
