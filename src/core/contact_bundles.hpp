@@ -113,9 +113,10 @@ struct BundlePass {
 /// The colours' bundles of one step, built from the touching contacts of moving bodies.
 class ContactBundles {
  public:
-  /// Colours of fewer constraints than this join the overflow (StepColors::assign): two
-  /// bundles' worth.
+  /// Colours of fewer constraints than this, and fewer contacts than kMinColorContacts, join the
+  /// overflow (StepColors::assign): two bundles' worth, and half a bundle.
   static constexpr int kMinColorSize = 2 * kBundleLanes;
+  static constexpr int kMinColorContacts = kBundleLanes / 2;
   /// Gives each contact that `colors` solves its lane, colour after colour, then the overflow,
   /// whose bundles are solved one lane after the other. On one thread.
   void assign(const std::vector<Contact>& contacts, const StepColors& colors);

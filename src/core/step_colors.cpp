@@ -25,7 +25,8 @@ int startColor(uint64_t key) {
 
 void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
                         const std::vector<std::pair<int, int>>& jointBodies,
-                        const SubstepBodies& bodies, int minSize, StepWorkers& workers) {
+                        const SubstepBodies& bodies, int minSize, int minContacts,
+                        StepWorkers& workers) {
   ConstraintColoring& coloring = coloring_;  // kept: a step allocated it anew
   coloring.reset(bodies.dynamicCount());
   constexpr int kOverflowIndex = ConstraintColoring::kMaxColors;  // the overflow's, in `count`
@@ -33,6 +34,7 @@ void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<
   jointColor_.resize(jointSlots.size());
   int count[kOverflowIndex + 1] = {};  // constraints, joints and contacts
   int jointCount[kOverflowIndex + 1] = {};
+  int contactCount[kOverflowIndex + 1] = {};
   auto dynamicEntry = [&](int slot) {
     const int entry = bodies.entryOf(slot);
     return bodies.isDynamicEntry(entry) ? entry : -1;
@@ -69,20 +71,28 @@ void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<
     const int color = coloring.assign(e.a, e.b, e.start);
     colorOfContact_[i] = color == ConstraintColoring::kOverflow ? kOverflowIndex : color;
     ++count[colorOfContact_[i]];
+    ++contactCount[colorOfContact_[i]];
   }
-  // A colour of a few constraints costs the threads a stage for little work: it joins the
-  // overflow. The colours kept are numbered in order, the overflow last.
+  // The colours kept are numbered in order, the overflow last. A colour's contacts are solved
+  // side by side from minContacts on: a chain of contacts one at a time (a stack: each waits for
+  // the last) took longer than its colours' half-empty bundles. Its joints need minSize
+  // constraints in the colour, or go one by one in the overflow, in their order: a chain of
+  // joints (a bridge) converges along it that way, and opened twice as wide in colours.
   int kept[kOverflowIndex + 1];  // each colour's number among the colours kept, or -1
+  bool jointsKept[kOverflowIndex + 1];
   int keptCount = 0;
   for (int color = 0; color < kOverflowIndex; ++color) {
-    kept[color] = count[color] < minSize ? -1 : keptCount++;
+    jointsKept[color] = count[color] >= minSize;
+    kept[color] = jointsKept[color] || contactCount[color] >= minContacts ? keptCount++ : -1;
   }
   kept[kOverflowIndex] = keptCount;
+  jointsKept[kOverflowIndex] = false;
   auto numberOf = [&](int color) { return kept[color] < 0 ? keptCount : kept[color]; };
   jointsOfColor_.resize(static_cast<size_t>(keptCount) + 1);
   for (std::vector<int>& list : jointsOfColor_) list.clear();
   for (size_t k = 0; k < jointSlots.size(); ++k) {
-    jointsOfColor_[numberOf(jointColor_[k])].push_back(jointSlots[k]);
+    const int color = jointColor_[k];
+    jointsOfColor_[jointsKept[color] ? kept[color] : keptCount].push_back(jointSlots[k]);
   }
   contactCount_.assign(static_cast<size_t>(keptCount) + 1, 0);
   for (int& color : colorOfContact_) {

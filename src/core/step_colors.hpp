@@ -1,7 +1,7 @@
 // The sub-stepping solvers' colours of one step: the active joints and the touching contacts
 // coloured together (constraint_coloring.hpp), so that a colour's joints and contacts can all be
-// solved at once, then the colours of few constraints folded into the overflow, which is solved
-// one constraint after the other. ContactBundles lays each colour's contacts into lanes; the
+// solved at once, then the colours of few constraints folded into the overflow (assign), which is
+// solved one constraint after the other. ContactBundles lays each colour's contacts into lanes; the
 // joints are solved colour by colour from jointsOf().
 #pragma once
 
@@ -18,12 +18,13 @@ namespace impulse2d {
 class StepColors {
  public:
   /// Colours the joints (slots, in the order given, with their bodies' slots) first and then the
-  /// contacts (in their order); a colour of fewer than `minSize` constraints joins the overflow.
-  /// What each contact needs is read in parallel blocks on `workers`; the colours are given on
-  /// one thread, in order.
+  /// contacts (in their order). A colour's joints join the overflow when it has fewer than
+  /// `minSize` constraints, its contacts when it has fewer than that and fewer than `minContacts`
+  /// contacts. What each contact needs is read in parallel blocks on `workers`; the colours are
+  /// given on one thread, in order.
   void assign(const std::vector<Contact>& contacts, const std::vector<int>& jointSlots,
               const std::vector<std::pair<int, int>>& jointBodies, const SubstepBodies& bodies,
-              int minSize, StepWorkers& workers);
+              int minSize, int minContacts, StepWorkers& workers);
 
   /// The colours kept; the overflow is colour colorCount().
   int colorCount() const { return static_cast<int>(jointsOfColor_.size()) - 1; }

@@ -427,7 +427,7 @@ void WorldImpl::colorConstraints() {
   activeJointBodies.clear();  // what the colouring needs of them
   for (const int j : activeJoints) activeJointBodies.push_back(jointBodies[j]);
   stepColors.assign(contacts, activeJoints, activeJointBodies, sb, ContactBundles::kMinColorSize,
-                    stepWorkers);
+                    ContactBundles::kMinColorContacts, stepWorkers);
   contactBundles.assign(contacts, stepColors);
   // The joints, colour after colour and the overflow last, copied side by side: a colour's
   // joints are every few in slot order, and a pass over them there waited on memory at each.
