@@ -6,26 +6,50 @@
 # the same seeds on every machine. Longer: CORE_SOAK_SECONDS=1800 runs seeds for that much wall
 # time instead (a run is never cut short). A failure
 # prints the seed, the solver, the violation, the last edits and the command that reproduces it.
-# Writes $STAGE_RESULTS/core_soak.xml (JUnit, one case per seed and solver).
+# Writes $STAGE_RESULTS/core_soak_N.xml (JUnit, one case per seed and solver) and core_soak_N.log
+# for each of its processes (two for CORE_SOAK_RUNS, one for CORE_SOAK_SECONDS).
 set -uo pipefail
 SOAK="$IMPULSE2D_WS/devel/lib/impulse2d/impulse2d_core_soak"
 SEED="${CORE_SOAK_SEED:-1}"
-LOG="$STAGE_RESULTS/core_soak.log"
+# A seeds' run: one soak process, its log, its errors and its JUnit cases in part PART's files.
+run_part() {  # run_part PART LIMIT SOAK_ARGS...
+  local part="$1" limit="$2"
+  shift 2
+  timeout "$limit" "$SOAK" "$@" --solver all --junit "$STAGE_RESULTS/core_soak_$part.xml" \
+    >"$STAGE_RESULTS/core_soak_$part.log" 2>"$STAGE_RESULTS/core_soak_$part.err"
+}
 if [ -n "${CORE_SOAK_SECONDS:-}" ]; then
-  bound=(--seconds "$CORE_SOAK_SECONDS")
-  limit=$((CORE_SOAK_SECONDS + 600))
+  echo "core soak: seeds from $SEED for $CORE_SOAK_SECONDS s, every solver" >&2
+  run_part 1 $((CORE_SOAK_SECONDS + 600)) --seed "$SEED" --seconds "$CORE_SOAK_SECONDS"
+  statuses=($?)
+  parts=(1)
 else
-  bound=(--runs "${CORE_SOAK_RUNS:-50}")
-  limit=900
+  # The seeds in two halves, one process each: each run is one world on one thread, and the
+  # halves give the same results as one process (a seed's run depends on its seed alone).
+  runs="${CORE_SOAK_RUNS:-50}"
+  first=$(((runs + 1) / 2))
+  echo "core soak: seeds $SEED-$((SEED + runs - 1)) in two processes, every solver" >&2
+  run_part 1 900 --seed "$SEED" --runs "$first" &
+  pid=$!
+  parts=(1)
+  statuses=()
+  if [ "$runs" -gt "$first" ]; then
+    run_part 2 900 --seed "$((SEED + first))" --runs "$((runs - first))"
+    second=$?
+    parts+=(2)
+  fi
+  wait "$pid"
+  statuses=($? ${second:-})
 fi
-echo "core soak: seeds from $SEED, ${bound[*]}, every solver" >&2
-timeout "$limit" "$SOAK" --seed "$SEED" "${bound[@]}" --solver all \
-  --junit "$STAGE_RESULTS/core_soak.xml" >"$LOG" 2>"$STAGE_RESULTS/core_soak.err"
-status=$?
-tail -n 1 "$LOG" >&2
-if [ "$status" -ne 0 ]; then
-  echo "core soak FAILED (exit $status):" >&2
-  grep -v "0 violations" "$LOG" | tail -n 5 >&2
-  tail -n 40 "$STAGE_RESULTS/core_soak.err" >&2
-fi
+status=0
+for i in "${!parts[@]}"; do
+  part="${parts[$i]}"
+  tail -n 1 "$STAGE_RESULTS/core_soak_$part.log" >&2
+  if [ "${statuses[$i]}" -ne 0 ]; then
+    echo "core soak FAILED (part $part, exit ${statuses[$i]}):" >&2
+    grep -v "0 violations" "$STAGE_RESULTS/core_soak_$part.log" | tail -n 5 >&2
+    tail -n 40 "$STAGE_RESULTS/core_soak_$part.err" >&2
+    status=1
+  fi
+done
 exit "$status"
