@@ -3,10 +3,11 @@
 # workspace ($IMPULSE2D_WS-tsan), then, with the release workspace's world and robot rostest
 # clients (link_release_clients in lib/side_workspace.bash), runs the concurrent service tests
 # (test/ros/tsan.test) and the robot tests (test/ros/tsan_robot.test) against it. Any
-# ThreadSanitizer report from the node fails the stage; test/ros/tsan.supp lists the uninstrumented ROS libraries whose internal
-# synchronisation TSan cannot see. Writes rostest's JUnit XML and one case for the reports.
-# Bound: build ~3 min on 2 cores (node and its libraries; -O1 -g1, two thirds of
-# the compile time of RelWithDebInfo's -O2 -g, and line tables are all reports need), run ~1 min.
+# ThreadSanitizer report from the node fails the stage; test/ros/tsan.supp lists the
+# uninstrumented ROS libraries whose internal synchronisation TSan cannot see. Writes rostest's
+# JUnit XML and one case for the reports.
+# Bound: build ~3 min on 2 cores (node and its libraries; -O1 -g1, two thirds of the compile time
+# of RelWithDebInfo's -O2 -g, and line tables are all reports need), run ~1 min.
 set -uo pipefail
 REPO="${REPO:-$(cd "$(dirname "$0")/../.." && pwd)}"
 STAGE_RESULTS="${STAGE_RESULTS:-$(mktemp -d)}"

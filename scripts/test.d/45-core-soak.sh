@@ -18,35 +18,33 @@ run_part() {  # run_part PART LIMIT SOAK_ARGS...
   timeout "$limit" "$SOAK" "$@" --solver all --junit "$STAGE_RESULTS/core_soak_$part.xml" \
     >"$STAGE_RESULTS/core_soak_$part.log" 2>"$STAGE_RESULTS/core_soak_$part.err"
 }
+pids=()
+start_part() {  # start_part PART LIMIT SOAK_ARGS...: run_part in the background
+  run_part "$@" &
+  pids+=($!)
+}
 if [ -n "${CORE_SOAK_SECONDS:-}" ]; then
   echo "core soak: seeds from $SEED for $CORE_SOAK_SECONDS s, every solver" >&2
-  run_part 1 $((CORE_SOAK_SECONDS + 600)) --seed "$SEED" --seconds "$CORE_SOAK_SECONDS"
-  statuses=($?)
-  parts=(1)
+  start_part 1 $((CORE_SOAK_SECONDS + 600)) --seed "$SEED" --seconds "$CORE_SOAK_SECONDS"
 else
   # The seeds in two halves, one process each: each run is one world on one thread, and the
   # halves give the same results as one process (a seed's run depends on its seed alone).
   runs="${CORE_SOAK_RUNS:-50}"
   first=$(((runs + 1) / 2))
   echo "core soak: seeds $SEED-$((SEED + runs - 1)) in two processes, every solver" >&2
-  run_part 1 900 --seed "$SEED" --runs "$first" &
-  pid=$!
-  parts=(1)
-  statuses=()
+  start_part 1 900 --seed "$SEED" --runs "$first"
   if [ "$runs" -gt "$first" ]; then
-    run_part 2 900 --seed "$((SEED + first))" --runs "$((runs - first))"
-    second=$?
-    parts+=(2)
+    start_part 2 900 --seed "$((SEED + first))" --runs "$((runs - first))"
   fi
-  wait "$pid"
-  statuses=($? ${second:-})
 fi
 status=0
-for i in "${!parts[@]}"; do
-  part="${parts[$i]}"
+for i in "${!pids[@]}"; do
+  part=$((i + 1))
+  wait "${pids[$i]}"
+  code=$?
   tail -n 1 "$STAGE_RESULTS/core_soak_$part.log" >&2
-  if [ "${statuses[$i]}" -ne 0 ]; then
-    echo "core soak FAILED (part $part, exit ${statuses[$i]}):" >&2
+  if [ "$code" -ne 0 ]; then
+    echo "core soak FAILED (part $part, exit $code):" >&2
     grep -v "0 violations" "$STAGE_RESULTS/core_soak_$part.log" | tail -n 5 >&2
     tail -n 40 "$STAGE_RESULTS/core_soak_$part.err" >&2
     status=1

@@ -76,21 +76,19 @@ void StepColors::assign(const std::vector<Contact>& contacts, const std::vector<
   // the last) took longer than its colours' half-empty bundles. Its joints need minSize
   // constraints in the colour, or go one by one in the overflow, in their order: a chain of
   // joints (a bridge) converges along it that way, and opened twice as wide in colours.
+  auto keepsJoints = [&](int color) { return color < kOverflowIndex && count[color] >= minSize; };
   int kept[kOverflowIndex + 1];  // each colour's number among the colours kept, or -1
-  bool jointsKept[kOverflowIndex + 1];
   int keptCount = 0;
   for (int color = 0; color < kOverflowIndex; ++color) {
-    jointsKept[color] = count[color] >= minSize;
-    kept[color] = jointsKept[color] || contactCount[color] >= minContacts ? keptCount++ : -1;
+    kept[color] = keepsJoints(color) || contactCount[color] >= minContacts ? keptCount++ : -1;
   }
   kept[kOverflowIndex] = keptCount;
-  jointsKept[kOverflowIndex] = false;
   auto numberOf = [&](int color) { return kept[color] < 0 ? keptCount : kept[color]; };
   jointsOfColor_.resize(static_cast<size_t>(keptCount) + 1);
   for (std::vector<int>& list : jointsOfColor_) list.clear();
   for (size_t k = 0; k < jointSlots.size(); ++k) {
     const int color = jointColor_[k];
-    jointsOfColor_[jointsKept[color] ? kept[color] : keptCount].push_back(jointSlots[k]);
+    jointsOfColor_[keepsJoints(color) ? kept[color] : keptCount].push_back(jointSlots[k]);
   }
   contactCount_.assign(static_cast<size_t>(keptCount) + 1, 0);
   for (int& color : colorOfContact_) {

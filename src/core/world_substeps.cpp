@@ -55,8 +55,11 @@ int blocksOf(int count, int perBlock) { return (count + perBlock - 1) / perBlock
 // counters, the bodies), measured at 2-3 us a stage on a VM whose cores pass a line in 250 ns,
 // while a bundle takes 20-40 ns: shared, pyramid20's colours of 5-10 bundles made two threads
 // 4.5x slower than one. Which thread runs a block never changes the result.
+// On one thread nothing is shared.
 constexpr int kLeastSharedBundles = 32;
-bool worthSharing(int bundles) { return bundles >= kLeastSharedBundles; }
+bool worthSharing(int bundles, int threads) {
+  return threads > 1 && bundles >= kLeastSharedBundles;
+}
 
 // A shared colour's bundles go in blocks of `most`, or finer (down to a bundle) where that would
 // leave a thread fewer than kLeastBlocksPerThread blocks: in blocks of four, most of a colour of a
@@ -172,7 +175,7 @@ void WorldImpl::overLaneColor(int color, const JointOp& jointOp, JointLanePass l
   const int count = static_cast<int>(scalar.size());
   // Not shared, the colour's bundles go to the kernels in one call and its other joints in one
   // block, as overColors does with the contacts' colours: blocks only serve sharing.
-  const bool shared = worthSharing(bundles + count / kJointLanes) && stepWorkers.threads() > 1;
+  const bool shared = worthSharing(bundles + count / kJointLanes, stepWorkers.threads());
   const int perBlock = shared
                            ? bundlesPerBlock(bundles, stepWorkers.threads(), kJointBundlesPerBlock)
                            : std::max(1, bundles);
@@ -272,7 +275,7 @@ void WorldImpl::overColors(const JointOp& jointOp, const BundleOp& bundleOp, con
   int unshared = contactBundles.colorBegin(0);  // the first bundle of the run not yet solved
   for (int color = 0; color < colors; ++color) {
     const int first = contactBundles.colorBegin(color), end = contactBundles.colorEnd(color);
-    if (!worthSharing(end - first) || stepWorkers.threads() == 1) continue;
+    if (!worthSharing(end - first, stepWorkers.threads())) continue;
     if (unshared < first) bundleOp(sink(0), unshared, first, false, 0);
     const int perBlock = bundlesPerBlock(end - first, stepWorkers.threads(), kBundlesPerBlock);
     const auto runRange = [&](int begin, int last, int worker) {
