@@ -159,14 +159,19 @@ void ContactBundles::assign(const std::vector<Contact>& contacts, const StepColo
 }
 
 void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
-                          const SubstepBodies& bodies, const std::vector<Body>& items,
-                          int substeps) {
+                          const SubstepBodies& bodies, const std::vector<Body>& items, int substeps,
+                          const CrushedBodies* crushed) {
+  const auto moves = [&](int slot) { return bodies.isDynamicEntry(bodies.entryOf(slot)); };
+  const bool anyCrushed = crushed != nullptr && crushed->any();
   for (size_t i = first; i < last; ++i) {
     if (laneOf_[i] < 0) continue;
     const Contact& contact = contacts[i];
     const int k = laneOf_[i] / kBundleLanes, lane = laneOf_[i] % kBundleLanes;
     fillLane(bundles_[k], extras_[k], lane, contact, laneBody(bodies, items, contact.bodyA),
              laneBody(bodies, items, contact.bodyB), substeps);
+    if (anyCrushed && crushed->pressesCrushed(contact, moves)) {
+      bundles_[k].laneFlags[lane] |= kNoPushLane;
+    }
   }
 }
 
@@ -184,6 +189,7 @@ void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies,
     for (int lane = 0; lane < c.laneCount; ++lane) any |= c.laneFlags[lane];
     c.anySequential = (any & kSequentialLane) != 0;
     c.anyRestitution = (any & kRestitutionLane) != 0;
+    c.anyNoPush = (any & kNoPushLane) != 0;
     // Lanes of a bouncing bundle that do not bounce still go through its restitution rows.
     for (int lane = 0; c.anyRestitution && lane < c.laneCount; ++lane) {
       if (!(c.laneFlags[lane] & kRestitutionLane)) clearRestitution(e, lane);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "contact.hpp"
+#include "crushed_bodies.hpp"
 #include "feedback.hpp"
 #include "step_colors.hpp"
 #include "substep_bodies.hpp"
@@ -36,12 +37,14 @@ constexpr int kBundleLanes = 8;
 
 // ContactBundle::laneFlags: a two-point lane too ill-conditioned for the block (its points are
 // solved in turn); a lane that may bounce; one whose other body cannot move (the soft step's
-// spring is stiffer there); a lane of two points.
+// spring is stiffer there); a lane of two points; one that presses a crushed body
+// (crushed_bodies.hpp: the soft step's biased pass does not push it out).
 enum : uint8_t {
   kSequentialLane = 1,
   kRestitutionLane = 2,
   kAgainstStaticLane = 4,
-  kTwoPointLane = 8
+  kTwoPointLane = 8,
+  kNoPushLane = 16
 };
 
 struct BundlePoint {
@@ -74,6 +77,7 @@ struct ContactBundle {
   alignas(64) int laneCount;
   bool anySequential;  // of the lanes, summed up by finishFill()
   bool anyRestitution;
+  bool anyNoPush;
   uint8_t laneFlags[kBundleLanes];  // kSequentialLane, kRestitutionLane, ... (above)
   // m, the largest shift of the lever arms (half the relative move along n and along t) for
   // which no row's K grows by more than half: the masses above were computed at the step's start,
@@ -122,9 +126,10 @@ class ContactBundles {
   void assign(const std::vector<Contact>& contacts, const StepColors& colors);
   /// Fills the lanes of the contacts [first, last) as the step begins, reading the contacts in
   /// order; impulses are the arbiters' whole-step ones divided among `substeps`. What follows
-  /// from the lane alone (masses, block, shift) is left to finishFill.
+  /// from the lane alone (masses, block, shift) is left to finishFill. `crushed`, when given,
+  /// marks the lanes that press a crushed body (kNoPushLane).
   void fill(std::vector<Contact>& contacts, size_t first, size_t last, const SubstepBodies& bodies,
-            const std::vector<Body>& items, int substeps);
+            const std::vector<Body>& items, int substeps, const CrushedBodies* crushed);
   /// After fill(), for the bundles [begin, end): the lanes no contact took, then the masses of
   /// every lane (SIMD, prepareBundleMasses), then each bundle's summary flags.
   void finishFill(int begin, int end, const SubstepBodies& bodies, bool soft);

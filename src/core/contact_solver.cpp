@@ -18,138 +18,11 @@ using HWY_NAMESPACE::solveTwoPointBlock;
 using HWY_NAMESPACE::TwoPointBlock;
 using HWY_NAMESPACE::wellConditioned;
 
-// A body pressed into overlaps from opposite sides by bodies the step does not move (static,
-// kinematic, asleep) cannot leave them. Baumgarte's pushes out of each overlap cannot all be met,
-// so the iterations and the warm starts grow their impulses without bound, step after step (the
-// core soak saw 4,400 N s on a 1 kg rod wedged between two stopped kinematic bodies), until
-// one of the contacts drops and the others fling the body out (157 m/s). Such a body's contacts
-// with them get no push, only what stops it going deeper: that set can be met.
-//
-//      ///// still /////           the pushes into the body from the
-//         n1 |  v                 bodies that do not move oppose
-//        +---------+              (more than 120 degrees apart):
-//        |  body   |              crushed
-//        +---------+
-//         n2 ^  |
-//      ///// still /////
-//
-// The same holds for a row of moving bodies pressed into each other between two still ones (seed
-// 526: a thin box 0.25 m inside another, the pair wedged between two still bodies, 2,300 N s
-// each way):
-//
-//      ///// still /////
-//         +---------+
-//         |  moving |  <- the still body's push, handed on
-//         +--+---+--+     through the overlap below
-//            | moving |
-//      ///// still /////
-//
-// A still body's push is handed on, body to body, through overlaps that press
-// onward (within 60 degrees of it); where two pushes from opposite sides (more than 120 degrees
-// apart) meet, every body along both rows is crushed, and the contacts between them get no push
-// either.
-void ContactSolver::findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies) {
-  crushed_.clear();  // last step's
-  pressedPairs_.clear();
-  // Sized in the first pass for every slot the second reads, so that no reference into it moves.
-  auto ensureBacking = [&](int slot) {
-    const size_t needed = static_cast<size_t>(slot) + 1;
-    if (backing_.size() < needed) backing_.resize(needed);
-  };
-  // Pushes from still bodies, the first met on each body (pushes are unit vectors), and the
-  // twelfths of the circle they point into.
-  unsigned sectors = 0;
-  for (const Contact& contact : contacts) {
-    const Manifold& m = contact.manifold;
-    bool overlapping = false;
-    for (int i = 0; i < m.pointCount; ++i) overlapping |= m.points[i].separation < 0.0;
-    if (!overlapping) continue;
-    const bool movesA = bodies.isActive(contact.bodyA), movesB = bodies.isActive(contact.bodyB);
-    if (movesA && movesB) {
-      ensureBacking(std::max(contact.bodyA, contact.bodyB));
-      pressedPairs_.push_back({contact.bodyA, contact.bodyB, m.normal});
-      continue;
-    }
-    if (!movesA && !movesB) continue;
-    const int slot = movesA ? contact.bodyA : contact.bodyB;
-    const Vec2 push = movesA ? Vec2(-m.normal) : m.normal;  // into the body that moves
-    sectors |= 1u << sectorOf(push);
-    ensureBacking(slot);
-    Backing& backing = backing_[static_cast<size_t>(slot)];
-    if (!backing.pushed) {
-      backing = {push, kStill, true};
-      backedSlots_.push_back(slot);
-    } else if (backing.push.dot(push) < -0.5) {
-      crushed_.mark(slot);
-    }
-  }
-  // Handed on through the moving pairs, one body further each round (deterministic: contact
-  // order), until nothing changes; a row longer than the rounds is left alone. Only where two
-  // still bodies push from opposite sides can a row be crushed (a pile on the ground is not:
-  // its pushes all point up, and the rounds would cost a large pyramid a quarter of its step).
-  if (mayOppose(sectors)) {
-    auto crushRow = [&](int slot) {
-      for (int hops = 0; slot != kStill && hops <= kHandOnRounds; ++hops) {
-        crushed_.mark(slot);
-        slot = backing_[static_cast<size_t>(slot)].from;
-      }
-    };
-    for (int round = 0; round < kHandOnRounds && !pressedPairs_.empty(); ++round) {
-      bool handedOn = false;
-      for (const PressedPair& pair : pressedPairs_) {
-        Backing& backedA = backing_[static_cast<size_t>(pair.a)];
-        Backing& backedB = backing_[static_cast<size_t>(pair.b)];
-        const bool aPressesB = backedA.pushed && backedA.push.dot(pair.normal) > 0.5;
-        const bool bPressesA = backedB.pushed && backedB.push.dot(pair.normal) < -0.5;
-        if (aPressesB && bPressesA) {
-          if (backedA.push.dot(backedB.push) < -0.5) {
-            crushRow(pair.a);
-            crushRow(pair.b);
-          }
-        } else if (aPressesB && !backedB.pushed) {
-          backedB = {backedA.push, pair.a, true};
-          backedSlots_.push_back(pair.b);
-          handedOn = true;
-        } else if (bPressesA && !backedA.pushed) {
-          backedA = {backedB.push, pair.b, true};
-          backedSlots_.push_back(pair.a);
-          handedOn = true;
-        }
-      }
-      if (!handedOn) break;
-    }
-  }
-  for (const int slot : backedSlots_) backing_[static_cast<size_t>(slot)] = Backing();
-  backedSlots_.clear();
-}
-
-// Which twelfth of the circle a unit vector points into: 0 from -pi (and 0 for one not finite).
-int ContactSolver::sectorOf(const Vec2& direction) {
-  const double twelfths = (std::atan2(direction.y(), direction.x()) + kPi) / (kPi / 6.0);
-  if (!(twelfths > 0.0)) return 0;  // before the cast: a NaN or negative int is undefined
-  return std::min(static_cast<int>(twelfths), 11);
-}
-
-// Whether two pushes in the marked twelfths may be more than 120 degrees apart (dot < -0.5):
-// twelfths four or more apart around the circle hold such pairs (their far edges 150 degrees);
-// three apart at most 120.
-bool ContactSolver::mayOppose(unsigned sectors) {
-  for (int i = 0; i < 12; ++i) {
-    if (!(sectors & (1u << i))) continue;
-    for (int j = i + 4; j <= i + 8; ++j) {
-      if (sectors & (1u << (j % 12))) return true;
-    }
-  }
-  return false;
-}
-
 void ContactSolver::withholdPush(int slot) { unpushed_.mark(slot); }
 
 bool ContactSolver::getsNoPush(const Contact& contact, const SolverBodies& bodies) const {
   if (unpushed_.has(contact.bodyA) || unpushed_.has(contact.bodyB)) return true;
-  const bool crushedA = crushed_.has(contact.bodyA), crushedB = crushed_.has(contact.bodyB);
-  return (crushedA && (crushedB || !bodies.isActive(contact.bodyB))) ||
-         (crushedB && !bodies.isActive(contact.bodyA));
+  return crushed_.pressesCrushed(contact, [&](int slot) { return bodies.isActive(slot); });
 }
 
 void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
@@ -158,7 +31,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
   extras_.clear();
   bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
-  if (baumgarte) findCrushed(contacts, bodies);
+  if (baumgarte) crushed_.find(contacts, [&](int slot) { return bodies.isActive(slot); });
   const double inverseDt = 1.0 / dt;
   for (Contact& contact : contacts) {
     const Manifold& m = contact.manifold;

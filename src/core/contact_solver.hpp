@@ -11,6 +11,7 @@
 #pragma once
 
 #include "contact.hpp"
+#include "crushed_bodies.hpp"
 #include "feedback.hpp"
 #include "solver_body.hpp"
 
@@ -85,56 +86,14 @@ class ContactSolver {
                                double target2);
   SolverBodies* bodies_ = nullptr;  // this step's; entries may be added until the solve starts
 
-  /// Baumgarte: marks crushed_ (by slot) the bodies pressed into overlaps from opposite sides
-  /// by bodies the step does not move, directly or through a row of moving bodies.
-  void findCrushed(const std::vector<Contact>& contacts, const SolverBodies& bodies);
-  /// Whether the contact gets no push out of its overlap: it presses a crushed body against a
-  /// body the step does not move or another crushed body, or touches a body whose push is
-  /// withheld (withholdPush).
+  /// Whether the contact gets no push out of its overlap: it presses a crushed body
+  /// (crushed_bodies.hpp), or touches a body whose push is withheld (withholdPush).
   bool getsNoPush(const Contact& contact, const SolverBodies& bodies) const;
-  static int sectorOf(const Vec2& direction);
-  static bool mayOppose(unsigned sectors);
-
-  // Marks by slot for one step, with the slots marked listed so that clearing touches only them.
-  struct SlotMarks {
-    void mark(int slot) {
-      const size_t k = static_cast<size_t>(slot);
-      if (bySlot.size() <= k) bySlot.resize(k + 1, 0);
-      if (!bySlot[k]) marked.push_back(slot);
-      bySlot[k] = 1;
-    }
-    bool has(int slot) const {
-      const size_t k = static_cast<size_t>(slot);
-      return k < bySlot.size() && bySlot[k];
-    }
-    void clear() {
-      for (const int slot : marked) bySlot[static_cast<size_t>(slot)] = 0;
-      marked.clear();
-    }
-    std::vector<char> bySlot;
-    std::vector<int> marked;
-  };
 
   std::vector<ContactConstraint> constraints_;
   std::vector<ContactConstraintExtra> extras_;  // by constraint
-  // findCrushed's scratch: by slot, the first push from a still body a moving body meets,
-  // directly (from kStill) or handed on by the moving body `from` (the still body's push).
-  static constexpr int kStill = -1;
-  static constexpr int kHandOnRounds = 8;  // the longest row of moving bodies handed a push
-  struct Backing {
-    Vec2 push = Vec2::Zero();
-    int from = kStill;
-    bool pushed = false;
-  };
-  std::vector<Backing> backing_;
-  std::vector<int> backedSlots_;  // the slots set in it, to clear only them
-  struct PressedPair {
-    int a, b;
-    Vec2 normal;  // from a to b
-  };
-  std::vector<PressedPair> pressedPairs_;  // overlaps between two moving bodies
-  SlotMarks crushed_;                      // this step (baumgarte, findCrushed)
-  SlotMarks unpushed_;                     // this step (withholdPush)
+  CrushedBodies crushed_;                       // this step (baumgarte)
+  CrushedBodies::SlotMarks unpushed_;           // this step (withholdPush)
 };
 
 }  // namespace impulse2d

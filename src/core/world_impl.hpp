@@ -297,6 +297,7 @@ struct WorldImpl {
   SubstepBodies substepBodies;
   StepColors stepColors;
   ContactBundles contactBundles;
+  CrushedBodies crushedBodies;  // the soft step's, this step
   StepWorkers stepWorkers;
   std::vector<std::pair<int, int>> activeJointBodies;  // by active joint: its bodies' slots
   // The sub-stepping solvers' active joints, colour after colour (copies). After a step they,

@@ -313,6 +313,9 @@ void WorldImpl::solveSubsteps(double dt) {
   laps.lap(&StepProfile::coloring);
   if (soft) measureSoftStepStart();
   BundlePass pass = bundlePass(h);
+  if (soft) {  // its springs would turn a crushed body out of its overlaps (crushed_bodies.hpp)
+    crushedBodies.find(contacts, [&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
+  }
   fillBundles(dt, substeps, soft);
   const bool preparedByRelax = !soft && def.warmStarting;
   jointLanesFilled = preparedByRelax;  // the lanes' rows are rigid and warm started
@@ -499,11 +502,11 @@ void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
       [&](int slot) { return sb.view(slot); }, [&](int slot) { sb.prefetchView(slot, true); },
       &jointStart, &stepWorkers, def.gravity.norm() * dt, def.maxLinearSpeed);
-  stepWorkers.forRanges(static_cast<int>(contacts.size()), kContactsPerBlock,
-                        [&](int begin, int end, int) {
-                          contactBundles.fill(contacts, static_cast<size_t>(begin),
-                                              static_cast<size_t>(end), sb, bodies.items, substeps);
-                        });
+  stepWorkers.forRanges(
+      static_cast<int>(contacts.size()), kContactsPerBlock, [&](int begin, int end, int) {
+        contactBundles.fill(contacts, static_cast<size_t>(begin), static_cast<size_t>(end), sb,
+                            bodies.items, substeps, soft ? &crushedBodies : nullptr);
+      });
   stepWorkers.forRanges(
       contactBundles.bundleCount(), 8 * kBundlesPerBlock,
       [&](int begin, int end, int) { contactBundles.finishFill(begin, end, sb, soft); });

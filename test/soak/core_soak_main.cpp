@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
       options.steps = static_cast<int>(steps);
       options.solver = solver;
       options.threads = static_cast<int>(threads);
-      options.gravity = !topDown && s % 5 != 4;  // one seed in five is top-down anyway
+      options.gravity = !topDown && soak::gravityOf(s);
       options.watch = watch;
       const soak::Report report = soak::run(options);
       ++done;
