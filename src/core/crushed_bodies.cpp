@@ -13,8 +13,8 @@ namespace impulse2d {
 // with them get no push, only what stops it going deeper: that set can be met. The soft step's
 // springs (contact_kernels.cpp) do the same by turning the body: where its contact points
 // let it turn out of both overlaps at once, the pushes from both sides are a couple, and the
-// warm starts handed it on sub-step after sub-step (soak seed 469 under `soft`: a 0.27 x 0.60 m
-// body 21 cm deep, 0.2 -> 123 rad/s in one step).
+// warm starts handed it on sub-step after sub-step (soak seed 469 under `soft`: a body 0.54 m
+// thick, 21 cm deep, 0.2 -> 123 rad/s in one step).
 //
 //      ///// still /////           the pushes into the body from the
 //         n1 |  v                 bodies that do not move oppose
