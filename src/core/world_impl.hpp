@@ -175,6 +175,20 @@ struct StepScratch {
   // Both NGS paths' guard (position_guard.hpp): the moving bodies' rows before the passes.
   std::vector<BodyState> guardedStates;
   std::vector<SolverBody> guardedBodies;
+  // The far-reaching rows before the position passes (world_substeps.cpp, boundFarReach): the
+  // sub-stepping solvers' states, the one-pass solvers' bodies.
+  struct FarReach {
+    int entry;
+    double reach;
+    BodyState before;
+  };
+  std::vector<FarReach> farReaching;
+  struct OnePassFarReach {
+    int entry;
+    double reach;
+    SolverBody before;
+  };
+  std::vector<OnePassFarReach> onePassFarReaching;
   // Baumgarte's split joints (world_step.cpp, splitStressedJoints): their slots.
   std::vector<int> splitJoints;
   // Keeping out of static bodies (keep_out_of_static.cpp): the deep bodies, and by block of
@@ -437,6 +451,17 @@ struct WorldImpl {
   /// The step's summed impulses back into the contacts.
   void storeBundles();
   void correctSubstepPositions(const BundlePass& pass);
+  /// Before the position passes: the rows whose farthest point a pass could swing further than
+  /// it moves their centre (scratch.farReaching); after them (`passes` run), each such row's
+  /// correction shrunk until no point of it moved further than 2 kMaxLinearCorrection a pass.
+  void noteFarReach();
+  void boundFarReach(int passes);
+  /// The same for the one-pass solvers' position passes (world_step.cpp).
+  void noteOnePassFarReach();
+  void boundOnePassFarReach(int passes);
+  /// How far the row's farthest shape point lies from its centre (m): a lone body's (in
+  /// `loneSlot`) maxExtent, or a welded cluster's farthest member's.
+  double reachOf(const ClusterRows& rows, int row, int loneSlot) const;
   // The position guard (position_guard.hpp, world_position_guard.cpp).
   using JointErrorNote = std::function<void(int entryA, int entryB, double squaredError)>;
   /// The solving joints in the order of this step's solver (colour order or slot order), each

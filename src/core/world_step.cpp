@@ -494,8 +494,11 @@ void WorldImpl::dropMotionUndone() {
 
 double WorldImpl::runPositionPasses(const std::vector<int>& slots, const PositionPasses& passes) {
   const auto visitJoints = [&](const auto& note) { visitOnePassJointErrors(slots, note); };
-  double widest = 0.0;  // the widest joint error the last pass met
+  double widest = 0.0;    // the widest joint error the last pass met
+  noteOnePassFarReach();  // world_substeps.cpp, noteFarReach
+  int passCount = 0;
   for (int iteration = 0; iteration < def.positionIterations; ++iteration) {
+    ++passCount;
     bool jointsOk = true;
     widest = 0.0;
     const auto moveJoints = [&] {
@@ -526,7 +529,31 @@ double WorldImpl::runPositionPasses(const std::vector<int>& slots, const Positio
     const bool contactsOk = !passes.contacts || contactSolver.solvePositions(def);
     if (jointsOk && contactsOk) break;
   }
+  boundOnePassFarReach(passCount);
   return widest;
+}
+
+void WorldImpl::noteOnePassFarReach() {
+  scratch.onePassFarReaching.clear();
+  for (int e = 0; e < solverBodies.dynamicCount() && def.positionIterations > 0; ++e) {
+    const double reach = reachOf(solverBodies.clusterRows(), e, solverBodies.slotOf(e));
+    if (reach > kLongestFreeReach)
+      scratch.onePassFarReaching.push_back({e, reach, solverBodies[e]});
+  }
+}
+
+void WorldImpl::boundOnePassFarReach(int passes) {
+  for (const StepScratch::OnePassFarReach& far : scratch.onePassFarReaching) {
+    SolverBody& body = solverBodies[far.entry];
+    const SolverBody& before = far.before;
+    const Vec2 move = body.center - before.center;
+    const double turn = body.angle - before.angle;
+    const double share = farReachShare(move.norm(), turn, far.reach, passes);
+    if (share >= 1.0) continue;
+    body.center = before.center + share * move;
+    body.angle = before.angle + share * turn;
+    body.q = Rot(body.angle);
+  }
 }
 
 // Baumgarte's bias is momentum: a group of joints that cannot all hold, pushed by it, flew (a

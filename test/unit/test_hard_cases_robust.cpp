@@ -364,6 +364,62 @@ TEST(HardCasesRobust, AFarOpenWeldHeldAgainstAWallDoesNotPumpItsBody) {
   }
 }
 
+// A 9 g body welded 11 m from a small box and a third body welded 5 m out on the other side, the
+// cluster held by a rigid prismatic joint to a box that a teleport then carries 15 m away: the
+// position passes pull the cluster round. A pass turns a body at most 8 degrees, which swung the
+// far member 3.95 m a step under baumgarte, ngs and substep (soak seed 1146, substep: 5.6-7.3 m a
+// step, into the ceiling and out of the arena). No point of a body or cluster moves further than
+// 0.4 m a pass now (world_substeps.cpp, boundFarReach): 1.2 m a step with 3 passes, plus what its
+// velocity moves it.
+TEST(HardCasesRobust, AFarReachingWeldedClusterIsNotSwungThroughTheWalls) {
+  for (const SolverType solver : kSolvers) {
+    World world;
+    world.settings().solver = solver;
+    addBox(world, "floor", Vec2(0.0, -1.0), 24.0, 2.0, BodyType::Static);
+    addBox(world, "ceiling", Vec2(0.0, 21.0), 24.0, 2.0, BodyType::Static);
+    addBox(world, "left", Vec2(-11.0, 10.0), 2.0, 20.0, BodyType::Static);
+    addBox(world, "right", Vec2(11.0, 10.0), 2.0, 20.0, BodyType::Static);
+    const BodyId hub = addBox(world, "hub", Vec2(-3.3, 3.4), 0.15, 0.15, BodyType::Dynamic);
+    const BodyId tip = test::addCircle(world, "tip", Vec2(4.7, 13.4), 0.05, BodyType::Dynamic);
+    const BodyId tail = addBox(world, "tail", Vec2(-8.0, 3.0), 0.3, 0.3, BodyType::Dynamic);
+    const BodyId slider = addBox(world, "slider", Vec2(-2.0, 6.0), 0.8, 0.8, BodyType::Dynamic);
+    for (const auto& [other, anchor] : {std::pair{tip, Vec2(2.2, 3.7)}, {tail, Vec2(-5.6, 13.0)}}) {
+      JointDef weld;
+      weld.type = JointType::Weld;
+      weld.bodyA = hub;
+      weld.bodyB = other;
+      weld.anchor = anchor;
+      ASSERT_TRUE(world.createJoint(weld).valid());
+    }
+    JointDef prismatic;
+    prismatic.type = JointType::Prismatic;
+    prismatic.bodyA = hub;
+    prismatic.bodyB = slider;
+    prismatic.anchor = Vec2(-13.5, 5.5);
+    ASSERT_TRUE(world.createJoint(prismatic).valid());
+    for (int step = 0; step < 20; ++step) world.step();
+    ASSERT_TRUE(world.setTransform(slider, Vec2(8.0, 17.0), 1.0));
+    double longestStep = 0.0, fastest = 0.0;
+    bool inside = true;
+    for (int step = 0; step < 300; ++step) {
+      const Vec2 before = world.body(tip).center;
+      world.step();
+      const Vec2 now = world.body(tip).center;
+      longestStep = std::max(longestStep, (now - before).norm());
+      fastest = std::max(fastest, world.body(tip).linearVelocity.norm());
+      inside = inside && std::abs(now.x()) < 10.0 && now.y() > 0.0 && now.y() < 20.0;
+    }
+    hard_case::report("far_reaching_cluster", solver,
+                      hard_case::figures("the far member's longest step %.3f m, fastest %.3f m/s",
+                                         longestStep, fastest));
+    const double passes = world.settings().positionIterations;
+    EXPECT_LT(longestStep, passes * 0.4 + fastest * world.settings().timeStep + 1e-9)
+        << solverName(solver);
+    EXPECT_TRUE(inside) << solverName(solver) << ": the far member left the walls";
+    EXPECT_EQ(world.removedBodyCount(), 0u);
+  }
+}
+
 // The core soak's seeds that found a bug, each kept as a regression test (README "Runtime edits"):
 //   seed 1: NaN from a joint's warm start grown without bound under the speed limit (substep);
 //           energy pumped by joint feedback pushing at rate x error (baumgarte, soft); a welded
@@ -382,8 +438,11 @@ TEST(HardCasesRobust, AFarOpenWeldHeldAgainstAWallDoesNotPumpItsBody) {
 //           contacts grown to 1,200-2,300 N s, flung at 47 and 170 m/s (baumgarte; crushed rows).
 //   seed 469: a body wedged between two still ones spun to 123 rad/s by the pushes out of its
 //           overlaps, a couple (soft; crushed bodies, ABoxWedgedBetweenAWallAndAPostIsNotSpun).
+//   seed 1146: a body welded 11 m out swung 5.6-7.3 m a step by the position passes, out of the
+//           arena (substep; AFarReachingWeldedClusterIsNotSwungThroughTheWalls).
 TEST(HardCasesRobust, SoakSeedsThatOnceFailedNowHold) {
-  for (const uint64_t seed : {1, 2, 3, 64, 72, 93, 159, 246, 271, 291, 375, 412, 437, 469, 526}) {
+  for (const uint64_t seed :
+       {1, 2, 3, 64, 72, 93, 159, 246, 271, 291, 375, 412, 437, 469, 526, 1146}) {
     for (const SolverType solver : kSolvers) {
       soak::Options options;
       options.seed = seed;
