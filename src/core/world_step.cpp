@@ -4,6 +4,7 @@
 #include <impulse2d/limits.hpp>
 
 #include "motion_limits.hpp"
+#include "position_pass.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -616,13 +616,16 @@ void WorldImpl::correctSubstepPositions(const BundlePass& pass) {
 // swung them metres a step (soak seed 1146, substep: a 9 g body welded 11 m from its partner,
 // their cluster pulled round by a prismatic joint that a teleport had opened 34 m, went 5.6-7.3 m
 // a step, into the ceiling and out of the arena). So no point of a row moves further than
-// 2 kMaxLinearCorrection a pass, as any point of a body reaching kLongestFreeReach (1.4 m) may:
+// 2 kMaxLinearCorrection a pass, as no point of a body reaching kLongestFreeReach (1.4 m) does
+// under one constraint's caps; the move and the turn are shrunk alike:
 //
-//        a pass's 8 degrees                      bounded
-//    [c]-----------------------o  far end    [c]-----------------------o
-//      \___________________ 1.5 m per 11 m    \__ the far end 0.4 m a pass
+//                                  o'   a pass's 8 degrees at 11 m: 1.5 m
+//                              _.-'
+//     [c]---------------------o         the far member
+//                              `-o''    bounded: 0.4 m
 //
-// Only rows reaching further than kLongestFreeReach are noted; no other row can move that far.
+// Only rows reaching further than kLongestFreeReach are noted: their turn can carry a point
+// further than the pass moves their centre.
 void WorldImpl::noteFarReach() {
   SubstepBodies& sb = substepBodies;
   scratch.farReaching.clear();
