@@ -170,8 +170,8 @@ TEST(HardCasesRobust, ABoxCrushedUnderAStoppedKinematicSlabIsNotShotOut) {
   }
 }
 
-// A box 1.2 m long wedged, top-down, between a still wall 0.15 m into it and a still post 0.25 m
-// into its other side near its middle. The soft step pushed both overlaps out as springs; the
+// A box 1.2 m long wedged, top-down, between a still wall 0.15 m into it and a still post a few
+// cm into its other side near its middle. The soft step pushed both overlaps out as springs; the
 // box's contact points let it turn out of both at once, so the two pushes were a couple, and the
 // warm starts handed it on sub-step after sub-step: spikes of 10.7 rad/s and 2.2 m/s in a box
 // that cannot leave (soak seed 469: 0.2 -> 123 rad/s in one step). A crushed body's overlaps
@@ -364,7 +364,7 @@ TEST(HardCasesRobust, AFarOpenWeldHeldAgainstAWallDoesNotPumpItsBody) {
   }
 }
 
-// A 9 g body welded 11 m from a small box and a third body welded 5 m out on the other side, the
+// An 8 g body welded 13 m from a small box and a third body welded 5 m out on the other side, the
 // cluster held by a rigid prismatic joint to a box that a teleport then carries 15 m away: the
 // position passes pull the cluster round. A pass turns a body at most 8 degrees, which swung the
 // far member 3.95 m a step under baumgarte, ngs and substep (soak seed 1146, substep: 5.6-7.3 m a
