@@ -161,7 +161,7 @@ void ContactBundles::assign(const std::vector<Contact>& contacts, const StepColo
 void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
                           const SubstepBodies& bodies, const std::vector<Body>& items, int substeps,
                           const CrushedBodies* crushed) {
-  const auto moves = [&](int slot) { return bodies.isDynamicEntry(bodies.entryOf(slot)); };
+  const auto moves = [&](int slot) { return bodies.isDynamicSlot(slot); };
   const bool anyCrushed = crushed != nullptr && crushed->any();
   for (size_t i = first; i < last; ++i) {
     if (laneOf_[i] < 0) continue;

@@ -96,6 +96,8 @@ class SubstepBodies {
     __builtin_prefetch(start + sizeof(BodyStart) - 1);  // it may straddle two lines
   }
   bool isDynamicEntry(int entry) const { return entry >= 0 && entry < dynamicCount_; }
+  /// Whether the body in `slot` is dynamic and awake: the step moves it by impulses.
+  bool isDynamicSlot(int slot) const { return isDynamicEntry(entryOfSlot_[slot]); }
 
   int dynamicCount() const { return dynamicCount_; }
   int movingCount() const { return movingCount_; }

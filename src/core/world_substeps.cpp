@@ -314,7 +314,7 @@ void WorldImpl::solveSubsteps(double dt) {
   if (soft) measureSoftStepStart();
   BundlePass pass = bundlePass(h);
   if (soft) {  // its springs would turn a crushed body out of its overlaps (crushed_bodies.hpp)
-    crushedBodies.find(contacts, [&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
+    crushedBodies.find(contacts, [&](int slot) { return sb.isDynamicSlot(slot); });
   }
   fillBundles(dt, substeps, soft);
   const bool preparedByRelax = !soft && def.warmStarting;
@@ -429,7 +429,7 @@ void WorldImpl::colorConstraints() {
   SubstepBodies& sb = substepBodies;
   // Without warm starting, collectActiveJoints drops the kept impulses in the joints' slots.
   if (!def.warmStarting) syncJoints();
-  collectActiveJoints([&](int slot) { return sb.isDynamicEntry(sb.entryOf(slot)); });
+  collectActiveJoints([&](int slot) { return sb.isDynamicSlot(slot); });
   activeJointBodies.clear();  // what the colouring needs of them
   for (const int j : activeJoints) activeJointBodies.push_back(jointBodies[j]);
   stepColors.assign(contacts, activeJoints, activeJointBodies, sb, ContactBundles::kMinColorSize,
