@@ -22,6 +22,18 @@
 // from rest, and where a group's sum of those exceeds what would move the whole group at the
 // speed limit, its impulses shrink to that. Held so, a standoff stays a standoff; a light link
 // holding 1,000 times its own mass against gravity at 60 Hz stays 6,000 times below it.
+//
+// And a joint anchored far out on a moving body (kFarAnchor) and found open wider than
+// kOpenJointLimit as the step begins is not warm started at all: it cannot be met within the
+// step, and what it kept is what it pushed against whatever holds it open, through a long lever.
+// Handed on, that grew a little each step without doubling anything: the core soak's
+// sub-stepping runs gained energy so in the quiet phase (seeds 224, 469, 514, 671: small bodies
+// on hinges anchored 5-15 m out and open 0.1-0.3 m, shaken to 17-38 m/s in a few dozen steps).
+// Near anchors are left alone: a heavily loaded grid of short links opens 0.24 m at its worst
+// (v3_joint_grid), and without their warm start its joints opened 24 m instead. So are the soft
+// step's joints: they are springs, and what they kept is their pull, which holds a set that
+// cannot be met near its pin (the pinned chain of test_hard_cases_robust.cpp, seed 18: 162 m
+// from its pin without it).
 #pragma once
 
 #include <algorithm>
@@ -37,6 +49,8 @@ namespace impulse2d {
 
 class WarmStartGuard {
  public:
+  static constexpr double kOpenJointLimit = 0.1;  ///< m, twenty linear slops
+  static constexpr double kFarAnchor = 1.5;       ///< m from a moving body's centre of mass
   /// `joints` are the step's active joints, `contacts` the step's contacts (impulses not yet
   /// handed to the solver); rowOf(slot) is the solver row of a dynamic body (members of a welded
   /// cluster share one) or -1, below `rows`; view(slot) a joint's view of the body (its row's
@@ -45,11 +59,12 @@ class WarmStartGuard {
   /// step's or the last step's): close enough to weigh an energy, and no joint is prepared twice.
   /// `colorStart`, when given, cuts `joints` into colours, [colorStart[c], colorStart[c + 1]),
   /// whose joints share no row, the last of them the overflow; a colour's trial then runs in
-  /// blocks on `workers`, which may run them at once.
+  /// blocks on `workers`, which may run them at once. `rigidJoints`: the step solves its joints
+  /// without springs (all but the soft step), so far-open ones start from zero (above).
   template <class RowOf, class View, class PrefetchBody>
   void run(const std::vector<Joint*>& joints, std::vector<Contact>& contacts, int rows, RowOf rowOf,
            View view, PrefetchBody prefetchBody, const std::vector<int>* colorStart,
-           StepWorkers* workers, double gravityStep, double maxSpeed) {
+           StepWorkers* workers, double gravityStep, double maxSpeed, bool rigidJoints) {
     if (joints.empty()) return;
     localOfRow_.assign(static_cast<size_t>(rows), -1);
     bodies_.clear();
@@ -120,6 +135,8 @@ class WarmStartGuard {
         prefetchAhead(joints, k, kJointLines, nullptr, last);
         Joint& joint = *joints[k];
         const auto [la, lb] = ends_[k];
+        if (rigidJoints && farAndOpen(joint, la >= 0, lb >= 0, view))
+          scaleJointImpulses(joint, 0.0);
         BodyVelocity a = la >= 0 ? bodies_[la].trial : BodyVelocity();
         BodyVelocity b = lb >= 0 ? bodies_[lb].trial : BodyVelocity();
         applyJointWarmStart(joint, a, b);  // reads the joint only
@@ -192,6 +209,16 @@ class WarmStartGuard {
   // `lines` of joint k + 8 and the bodies of joint k + 4 (whose line arrived by then) are asked
   // for ahead; hints only.
   static constexpr int kJointLines = 4;  // what a warm start reads (world_substeps.cpp)
+  // Anchored further than kFarAnchor from a moving end's centre (its last pass's arm) and open
+  // wider than kOpenJointLimit (see the top).
+  template <class View>
+  static bool farAndOpen(const Joint& joint, bool movesA, bool movesB, const View& view) {
+    constexpr double farSquared = kFarAnchor * kFarAnchor;
+    const bool far = (movesA && joint.rA.squaredNorm() > farSquared) ||
+                     (movesB && joint.rB.squaredNorm() > farSquared);
+    return far &&
+           jointPositionError(joint, view(joint.bodyA), view(joint.bodyB)).linear > kOpenJointLimit;
+  }
   static constexpr int kTrialJointsPerBlock = 256;
   template <class PrefetchBody>
   static void prefetchAhead(const std::vector<Joint*>& joints, size_t k, int lines,

@@ -337,7 +337,7 @@ void WorldImpl::solve(double dt) {
         return entry >= 0 && solverBodies.isDynamic(entry) ? entry : -1;
       },
       [&](int slot) { return solverBodies.view(slot); }, nullptr, nullptr, nullptr,
-      def.gravity.norm() * dt, def.maxLinearSpeed);
+      def.gravity.norm() * dt, def.maxLinearSpeed, true);
   contactSolver.prepare(contacts, solverBodies, def, dt);
   laps.lap(&StepProfile::prepare);
 

@@ -501,7 +501,7 @@ void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
       scratch.guardedJoints, contacts, sb.dynamicCount(),
       [&](int slot) { return static_cast<int>(sb.writeRow(slot)); },
       [&](int slot) { return sb.view(slot); }, [&](int slot) { sb.prefetchView(slot, true); },
-      &jointStart, &stepWorkers, def.gravity.norm() * dt, def.maxLinearSpeed);
+      &jointStart, &stepWorkers, def.gravity.norm() * dt, def.maxLinearSpeed, !soft);
   stepWorkers.forRanges(
       static_cast<int>(contacts.size()), kContactsPerBlock, [&](int begin, int end, int) {
         contactBundles.fill(contacts, static_cast<size_t>(begin), static_cast<size_t>(end), sb,
