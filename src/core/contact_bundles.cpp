@@ -197,6 +197,13 @@ void ContactBundles::finishFill(int begin, int end, const SubstepBodies& bodies,
   }
 }
 
+void ContactBundles::collectBouncing() {
+  bouncing_.clear();
+  for (int k = 0; k < bundleCount(); ++k) {
+    if (bundles_[k].anyRestitution) bouncing_.push_back(k);
+  }
+}
+
 void ContactBundles::store(std::vector<Contact>& contacts, size_t first, size_t last) const {
   for (size_t i = first; i < last; ++i) {
     if (laneOf_[i] < 0) continue;

@@ -92,7 +92,7 @@ static_assert(sizeof(ContactBundle) % 64 == 0 && alignof(ContactBundle) == 64, "
 struct alignas(64) BundleExtra {
   BundleExtra() {}  // as ContactBundle
   double restitution[kBundleLanes];
-  double approach[2][kBundleLanes];  // m/s, the lowest normal speed before a solve (restitution)
+  double approach[2][kBundleLanes];  // m/s, the lowest normal speed before a warm start
   double maxNormalImpulse[2][kBundleLanes];
   double totalNormalImpulse[2][kBundleLanes], totalTangentImpulse[2][kBundleLanes];
   double k[2][kBundleLanes];  // K11, K22 (the soft step's springs scale with them)
@@ -133,6 +133,8 @@ class ContactBundles {
   /// After fill(), for the bundles [begin, end): the lanes no contact took, then the masses of
   /// every lane (SIMD, prepareBundleMasses), then each bundle's summary flags.
   void finishFill(int begin, int end, const SubstepBodies& bodies, bool soft);
+  /// After finishFill(): lists the bundles with a lane that may bounce (bouncing()).
+  void collectBouncing();
   /// Writes the step's summed impulses of the contacts [first, last) back into them.
   void store(std::vector<Contact>& contacts, size_t first, size_t last) const;
 
@@ -142,6 +144,7 @@ class ContactBundles {
   int overflowBegin() const { return colorStart_.back(); }
   int bundleCount() const { return static_cast<int>(bundles_.size()); }
   size_t contactCount() const { return contactCount_; }
+  const std::vector<int>& bouncing() const { return bouncing_; }
 
   BundlePass pass(SubstepBodies& bodies) {
     BundlePass p;
@@ -157,6 +160,7 @@ class ContactBundles {
   std::vector<int> colorStart_;  // bundles of colour c: [colorStart_[c], colorStart_[c + 1])
   std::vector<int> laneOf_;      // by contact: bundle * kBundleLanes + lane, or -1: not solved
   std::vector<int> rank_;        // by colour, scratch of assign(): its contacts placed so far
+  std::vector<int> bouncing_;    // the bundles with anyRestitution, in order
   size_t contactCount_ = 0;
 };
 
@@ -166,6 +170,9 @@ class ContactBundles {
 void warmStartBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
 /// One iteration: friction, then both normal rows (rigid, or the soft step's push).
 void solveBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
+/// Lowers each point's approach speed to its normal speed now, in the listed bundles: before
+/// each sub-step's warm start (restitution reads it).
+void noteBundleApproaches(const BundlePass& pass, const int* bundles, int count);
 /// Bounces points that approached faster than the threshold, once, after the sub-steps.
 void restituteBundles(const BundlePass& pass, int begin, int end, bool oneByOne);
 /// One non-linear Gauss-Seidel pass on positions; returns the deepest separation measured.

@@ -448,6 +448,9 @@ struct WorldImpl {
   BundlePass bundlePass(double h);
   /// The warm-start guard, then the contacts into their lanes.
   void fillBundles(double dt, int substeps, bool soft);
+  /// Before a sub-step's warm start: the bouncing bundles' approach speeds (noteBundleApproaches).
+  /// False when no bundle bounces.
+  bool noteApproaches(const BundlePass& pass);
   /// The step's summed impulses back into the contacts.
   void storeBundles();
   void correctSubstepPositions(const BundlePass& pass);

@@ -372,6 +372,7 @@ void WorldImpl::solveSubsteps(double dt) {
       sb.integrateVelocities(block * kBodiesPerBlock, (block + 1) * kBodiesPerBlock);
     });
     laps.lap(&StepProfile::integrate);
+    if (noteApproaches(pass)) laps.lap(&StepProfile::restitution);
     if (substep == 0 || !preparedByRelax) {  // else the rows are the last relax pass's
       overColors<JointAccess::ReadPoses>(prepareAndWarmStart, kernel(warmStartBundles), pass,
                                          JointLanePass::PrepareAndWarmStart);
@@ -510,6 +511,17 @@ void WorldImpl::fillBundles(double dt, int substeps, bool soft) {
   stepWorkers.forRanges(
       contactBundles.bundleCount(), 8 * kBundlesPerBlock,
       [&](int begin, int end, int) { contactBundles.finishFill(begin, end, sb, soft); });
+  contactBundles.collectBouncing();
+}
+
+bool WorldImpl::noteApproaches(const BundlePass& pass) {
+  const std::vector<int>& bouncing = contactBundles.bouncing();
+  if (bouncing.empty()) return false;
+  stepWorkers.forRanges(static_cast<int>(bouncing.size()), 8 * kBundlesPerBlock,
+                        [&](int begin, int end, int) {
+                          noteBundleApproaches(pass, bouncing.data() + begin, end - begin);
+                        });
+  return true;
 }
 
 void WorldImpl::storeBundles() {
