@@ -70,7 +70,7 @@ TEST(HardCasesRobust, ALongArmedWeldLoopLandsAndRests) {
   }
 }
 
-// Welds a-b and b-c with a distance joint a-c of 3 m where the welds hold a and c 1.1 m apart:
+// Welds a-b and b-c with a distance joint a-c of 3 m where the welds hold a and c 5.83 m apart:
 // soft and baumgarte carried all three to y = -650 m. Rigid welds win; the rod between two bodies
 // they already hold together has nothing to move.
 TEST(HardCasesRobust, ALoopThatCannotBeMetStaysBoundedAndRests) {
