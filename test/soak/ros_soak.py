@@ -9,12 +9,14 @@ clients for S seconds (default 30). Each client spawns boxes, circles and polygo
 one in five kinematic), deletes them, joins them with joints of all four types anchored anywhere,
 deletes joints, teleports, pushes, sets motors, reads states, casts rays, queries points, pauses,
 steps and unpauses, spawns, moves and deletes models (two jointed bodies with a laser and a
-bumper, whose topics come and go), and sends bad requests. A controller calls ~reset at a third of the run and
+bumper, whose topics come and go), spawns URDF models (an arm on a hinge, whose bodies it then
+treats as its own), and sends bad requests. A controller calls ~reset at a third of the run and
 ~load_scene at two thirds. Checked, each a JUnit case per mode:
   - every call answered within 1 s;
   - every bad request refused, every valid one accepted (or refused for a stated reason the
     world may have, such as a body gone after ~reset);
-  - no body removed (~removed_bodies), and every body a client still holds present at the end;
+  - no body removed (~removed_bodies), and every body a client still holds present at the end
+    and inside the arena;
   - ~reset and ~load_scene answered and effective;
   - the process's RSS bounded (at most 64 MiB above its value after warm-up);
   - the world alive at the end.
@@ -35,6 +37,10 @@ from xml.sax.saxutils import escape
 SLOW_CALL = 1.0  # s
 RSS_GROWTH_LIMIT = 64 * 1024  # KiB
 HALF_WIDTH, HEIGHT = 10.0, 20.0
+# As the core soak counts it (soak_run.cpp): a body has left once past the middle of a 2 m wall
+# (one resting on the ground or jammed between two walls sinks into them a little).
+ARENA_SLACK = 1.0
+KINEMATIC_REACH = 2.0  # m: kinematic bodies stay over 2 m (more than any body here) off the walls
 # What ~spawn_model places: two bodies on a revolute joint with a laser and a bumper (their topics
 # open and close with the model, under its namespace).
 MODEL_YAML = """
@@ -47,6 +53,26 @@ devices:
   - {type: laser, name: laser, body: base, angle_increment: 0.05, update_rate: 5}
   - {type: bumper, name: bumper, body: base}
 """
+
+# What ~spawn_urdf places (the arena is the xz plane, so the hinge turns about 3D y): a base and
+# an arm on a continuous joint (bodies "<model>/base" and
+# "<model>/arm", which the client then treats as its own bodies: joined, pushed, deleted).
+URDF_XML = """<robot name="arm">
+  <link name="base"><inertial><mass value="2"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0"
+    izz="0.05"/></inertial><collision><geometry><box size="0.5 0.3 0.2"/></geometry></collision>
+  </link>
+  <joint name="elbow" type="continuous"><parent link="base"/><child link="arm"/>
+    <origin xyz="0.25 0 0"/><axis xyz="0 1 0"/></joint>
+  <link name="arm"><inertial><origin xyz="0.3 0 0"/><mass value="0.5"/><inertia ixx="0" ixy="0"
+    ixz="0" iyy="0" iyz="0" izz="0.01"/></inertial><collision><origin xyz="0.3 0 0"/><geometry>
+    <box size="0.6 0.08 0.08"/></geometry></collision></link>
+</robot>"""
+
+
+def inside(pose, margin):
+    """Whether a body's origin lies inside the arena, at least `margin` m off its walls (< 0:
+    into them)."""
+    return abs(pose.x) < HALF_WIDTH - margin and margin < pose.y < HEIGHT - margin
 
 
 def rss_kib(pid):
@@ -77,11 +103,12 @@ class Client:
         self.generation, self.seen_generation = generation, generation.value
         self.random = random.Random(seed * 1000 + index)
         self.bodies, self.joints, self.next_name = [], [], 0
+        self.kinematic = set()  # the names of our kinematic bodies
         self.models = {}  # model name -> its bodies' names
         self.last = []  # the last calls, for a failure report
         self.counts = {"calls": 0, "slow": 0, "bad": 0, "bad_accepted": 0, "refused": 0,
                        "unexpected": 0, "errors": 0, "bodies_made": 0, "joints_made": 0,
-                       "models_made": 0, "slowest_ms": 0}
+                       "models_made": 0, "urdf_made": 0, "slowest_ms": 0}
         self.failures = []
         self.proxies = {}
 
@@ -140,6 +167,7 @@ class Client:
         if self.generation.value != self.seen_generation:
             self.seen_generation = self.generation.value
             self.bodies, self.joints, self.models = [], [], {}
+            self.kinematic = set()
 
     # --- requests ---
     def point(self, margin=0.0):
@@ -169,6 +197,17 @@ class Client:
             s.restitution = self.random.uniform(0.0, 0.9)
         return s
 
+    # A kinematic body starts well inside and moves at most KINEMATIC_REACH m by the run's end: it
+    # may never press a dynamic body into the walls, nor carry one out, so any dynamic body outside
+    # at the end is the solver's doing.
+    def kinematic_point(self):
+        return self.random.uniform(-5, 5), self.random.uniform(5, 15)
+
+    def kinematic_twist(self, twist):
+        speed = KINEMATIC_REACH / max(1.0, self.deadline - time.time()) / math.sqrt(2.0)
+        twist.linear.x, twist.linear.y = self.random.uniform(-speed, speed), self.random.uniform(-speed, speed)
+        twist.angular.z = self.random.uniform(-1, 1)
+
     def spawn(self):
         m = self.msg
         body = m.Body()
@@ -176,11 +215,10 @@ class Client:
         self.next_name += 1
         kinematic = self.random.random() < 0.2
         body.type = m.Body.KINEMATIC if kinematic else m.Body.DYNAMIC
-        x, y = self.point(1.0) if not kinematic else (self.random.uniform(-6, 6), self.random.uniform(4, 16))
+        x, y = self.point(1.0) if not kinematic else self.kinematic_point()
         body.pose.x, body.pose.y, body.pose.theta = x, y, self.random.uniform(-math.pi, math.pi)
-        if kinematic:  # slow, so that it stays well inside the walls over the run
-            body.twist.linear.x, body.twist.linear.y = self.random.uniform(-0.2, 0.2), self.random.uniform(-0.2, 0.2)
-            body.twist.angular.z = self.random.uniform(-1, 1)
+        if kinematic:
+            self.kinematic_twist(body.twist)
         else:
             body.twist.linear.x, body.twist.linear.y = self.random.uniform(-5, 5), self.random.uniform(-5, 5)
         body.shapes = [self.shape()]
@@ -189,15 +227,18 @@ class Client:
                              expect=True, name=body.name)
         if response is not None and response.success:
             self.bodies.append(body.name)
+            if kinematic:
+                self.kinematic.add(body.name)
             self.counts["bodies_made"] += 1
 
     def delete(self):
         if not self.bodies:
             return
         name = self.bodies.pop(self.random.randrange(len(self.bodies)))
+        self.kinematic.discard(name)
         self.call("delete_body", self.srv.DeleteBody, self.srv.DeleteBodyRequest(name=name),
                   expect=True, name=name)
-        self.joints = [j for j in self.joints if name not in j[1:]]
+        self.joints = [j for j in self.joints if name not in j[1:3]]
 
     def join(self):
         if len(self.bodies) < 2:
@@ -224,7 +265,7 @@ class Client:
                              self.srv.CreateJointRequest(joint=joint), expect=True,
                              name=joint.name, type=joint.type)
         if response is not None and response.success:
-            self.joints.append((joint.name, a, b))
+            self.joints.append((joint.name, a, b, joint.type == m.Joint.WELD))
             self.counts["joints_made"] += 1
 
     def unjoin(self):
@@ -233,6 +274,18 @@ class Client:
         name = self.joints.pop(self.random.randrange(len(self.joints)))[0]
         self.call("delete_joint", self.srv.DeleteJoint, self.srv.DeleteJointRequest(name=name),
                   expect=True, name=name)
+
+    def welded_to(self, name):
+        """The bodies our welds join to `name`, directly or not (a teleport moves them along)."""
+        group, todo = {name}, [name]
+        while todo:
+            at = todo.pop()
+            for _, a, b, weld in self.joints:
+                for one, other in ((a, b), (b, a)):
+                    if weld and one == at and other not in group:
+                        group.add(other)
+                        todo.append(other)
+        return group - {name}
 
     def teleport(self):
         if not self.bodies:
@@ -243,11 +296,26 @@ class Client:
         speed, angle = self.random.uniform(0, 5), self.random.uniform(-math.pi, math.pi)
         r.twist.linear.x, r.twist.linear.y = speed * math.cos(angle), speed * math.sin(angle)
         r.twist.angular.z = self.random.uniform(-5, 5)
-        # A kinematic body teleported keeps moving slowly only: a fast one would leave the arena.
+        if r.name in self.kinematic:
+            r.pose.x, r.pose.y = self.kinematic_point()
+            self.kinematic_twist(r.twist)
+        # The bodies welded to it come along, rigidly: as the core soak's user, this one keeps
+        # them inside the walls, putting the body back where it was when one would not be.
+        partners = self.welded_to(r.name)
+        get = self.proxy("get_body_state", self.srv.GetBodyState)
+        before = get(self.srv.GetBodyStateRequest(name=r.name)) if partners else None
         response = self.call("set_body_state", self.srv.SetBodyState, r, name=r.name)
         if response is not None and not response.success and not self.explained(response.message):
             self.counts["unexpected"] += 1
             self.fail("valid set_body_state refused: %s" % response.message)
+        if before is None or not before.success or response is None or not response.success:
+            return
+        for other in partners:
+            state = get(self.srv.GetBodyStateRequest(name=other))
+            if state.success and not inside(state.pose, 0.5):
+                back = self.srv.SetBodyStateRequest(name=r.name, pose=before.pose, twist=before.twist)
+                self.call("set_body_state", self.srv.SetBodyState, back, name=r.name)
+                break
 
     def push(self):
         if not self.bodies:
@@ -301,6 +369,17 @@ class Client:
             self.models[name] = list(response.bodies)
             self.counts["models_made"] += 1
 
+    def spawn_urdf(self):
+        name = "c%d_u%d" % (self.index, self.next_name)
+        self.next_name += 1
+        r = self.srv.SpawnUrdfRequest(model_name=name, urdf_xml=URDF_XML)
+        r.pose.x, r.pose.y = self.point(1.5)
+        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        response = self.call("spawn_urdf", self.srv.SpawnUrdf, r, expect=True, name=name)
+        if response is not None and response.success:
+            self.bodies.extend(response.bodies)
+            self.counts["urdf_made"] += 1
+
     def move_model(self):
         if not self.models:
             return
@@ -325,7 +404,7 @@ class Client:
 
     def bad(self):
         m, srv = self.msg, self.srv
-        kind = self.random.randrange(9)
+        kind = self.random.randrange(10)
         body = m.Body(name="c%d_bad%d" % (self.index, self.next_name), type=m.Body.DYNAMIC,
                       shapes=[self.shape()])
         self.next_name += 1
@@ -361,12 +440,16 @@ class Client:
         elif kind == 8:
             self.call("move_model", srv.MoveModel, srv.MoveModelRequest(model_name="no_such_model"),
                       expect=False)
+        elif kind == 9:  # a URDF cut short
+            self.call("spawn_urdf", srv.SpawnUrdf,
+                      srv.SpawnUrdfRequest(model_name="c%d_bad" % self.index,
+                                           urdf_xml=URDF_XML[:len(URDF_XML) // 2]), expect=False)
 
     def run(self):
         ops = [(0.20, self.spawn), (0.08, self.delete), (0.18, self.join), (0.05, self.unjoin),
                (0.07, self.teleport), (0.08, self.push), (0.15, self.read), (0.03, self.motor),
                (0.02, self.pause_step), (0.015, self.spawn_model), (0.02, self.move_model),
-               (0.01, self.delete_model), (0.095, self.bad)]
+               (0.01, self.delete_model), (0.01, self.spawn_urdf), (0.085, self.bad)]
         while time.time() < self.deadline:
             self.sync_generation()
             if len(self.bodies) > 60:
@@ -380,15 +463,20 @@ class Client:
                     break
 
     def final_check(self, removed):
-        """Every body still held is present, or was reported removed."""
+        """Every body still held is present, or was reported removed, and every dynamic one inside
+        the arena (the kinematic bodies move too slowly to carry one out: see spawn, teleport)."""
         self.sync_generation()
-        missing = []
+        missing, outside = [], []
         for name in self.bodies + [b for bodies in self.models.values() for b in bodies]:
             r = self.proxy("get_body_state", self.srv.GetBodyState)(self.srv.GetBodyStateRequest(name=name))
             if not r.success and name not in removed:
                 missing.append(name)
+            elif r.success and name not in self.kinematic and not inside(r.pose, -ARENA_SLACK):
+                outside.append("%s at (%.2f, %.2f)" % (name, r.pose.x, r.pose.y))
         if missing and not self.explained(""):
             self.fail("bodies gone without a report: %s" % missing[:10])
+        if outside and not self.explained(""):
+            self.fail("bodies outside the arena: %s" % outside[:10])
         return len(self.bodies)
 
 
@@ -500,11 +588,13 @@ def run_mode(mode, args, port):
         slow = [f for f in failures if " took " in f or " raised " in f]
         refused = [f for f in failures if "accepted" in f or "refused" in f]
         gone = [f for f in failures if "gone without" in f or "crashed" in f]
+        outside = [f for f in failures if "outside the arena" in f]
         cases.append(("%s: every call answered within %.0f s" % (mode, SLOW_CALL), slow[0] if slow else None))
         cases.append(("%s: bad requests refused, valid ones accepted" % mode, refused[0] if refused else None))
         cases.append(("%s: no body removed" % mode,
                       None if removed["count"] == 0 else "%d removed: %s" % (removed["count"], removed["reasons"][:5])))
         cases.append(("%s: every body held is present" % mode, gone[0] if gone else None))
+        cases.append(("%s: every dynamic body inside the arena" % mode, outside[0] if outside else None))
         slow_events = [e for e in events if e[1] > SLOW_CALL]
         cases.append(("%s: reset and load_scene mid-run" % mode,
                       None if load_ok and not slow_events else "load_ok=%s events=%s" % (load_ok, events)))
@@ -516,12 +606,13 @@ def run_mode(mode, args, port):
         cases.append(("%s: topics flowing" % mode,
                       None if all(seen[k] > 0 for k in seen) else "received %s" % seen))
         print("ros soak %s seed %d: %d s, %d clients, %d calls (%d bad, refused; slowest %d ms), %d "
-              "bodies, %d joints and %d models made, %d removed, reset and load_scene %s, RSS %s -> %s KiB, "
-              "messages %s"
+              "bodies, %d joints, %d models and %d URDF models made, %d removed, reset and load_scene %s, "
+              "RSS %s -> %s KiB, messages %s"
               % (mode, args.seed, args.seconds, args.clients, counts.get("calls", 0),
                  counts.get("bad", 0) - counts.get("bad_accepted", 0), counts.get("slowest_ms", 0),
                  counts.get("bodies_made", 0),
-                 counts.get("joints_made", 0), counts.get("models_made", 0), removed["count"], events, rss_start, rss_end, seen),
+                 counts.get("joints_made", 0), counts.get("models_made", 0), counts.get("urdf_made", 0),
+                 removed["count"], events, rss_start, rss_end, seen),
               flush=True)
         for f in failures[:10]:
             print("  " + f, file=sys.stderr)
