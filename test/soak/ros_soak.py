@@ -197,6 +197,16 @@ class Client:
             s.restitution = self.random.uniform(0.0, 0.9)
         return s
 
+    def new_name(self, kind):
+        """A name of ours no other client uses: c<client>_<kind><serial>."""
+        self.next_name += 1
+        return "c%d_%s%d" % (self.index, kind, self.next_name - 1)
+
+    def place(self, pose, margin):
+        """A random pose anywhere inside the arena, `margin` m off its walls."""
+        pose.x, pose.y = self.point(margin)
+        pose.theta = self.random.uniform(-math.pi, math.pi)
+
     # A kinematic body starts well inside and moves at most KINEMATIC_REACH m by the run's end: it
     # may never press a dynamic body into the walls, nor carry one out, so any dynamic body outside
     # at the end is the solver's doing.
@@ -211,8 +221,7 @@ class Client:
     def spawn(self):
         m = self.msg
         body = m.Body()
-        body.name = "c%d_b%d" % (self.index, self.next_name)
-        self.next_name += 1
+        body.name = self.new_name("b")
         kinematic = self.random.random() < 0.2
         body.type = m.Body.KINEMATIC if kinematic else m.Body.DYNAMIC
         x, y = self.point(1.0) if not kinematic else self.kinematic_point()
@@ -246,8 +255,7 @@ class Client:
         m = self.msg
         a, b = self.random.sample(self.bodies, 2)
         joint = m.Joint()
-        joint.name = "c%d_j%d" % (self.index, self.next_name)
-        self.next_name += 1
+        joint.name = self.new_name("j")
         joint.type = self.random.randrange(4)
         joint.body_a, joint.body_b = a, b
         joint.anchor.x, joint.anchor.y = self.point()
@@ -291,8 +299,7 @@ class Client:
         if not self.bodies:
             return
         r = self.srv.SetBodyStateRequest(name=self.random.choice(self.bodies))
-        r.pose.x, r.pose.y = self.point(1.5)
-        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        self.place(r.pose, 1.5)
         speed, angle = self.random.uniform(0, 5), self.random.uniform(-math.pi, math.pi)
         r.twist.linear.x, r.twist.linear.y = speed * math.cos(angle), speed * math.sin(angle)
         r.twist.angular.z = self.random.uniform(-5, 5)
@@ -359,22 +366,18 @@ class Client:
     def spawn_model(self):
         if len(self.models) >= 4:  # devices are bounded per world (1024)
             return
-        name = "c%d_m%d" % (self.index, self.next_name)
-        self.next_name += 1
+        name = self.new_name("m")
         r = self.srv.SpawnModelRequest(model_name=name, model_yaml=MODEL_YAML)
-        r.pose.x, r.pose.y = self.point(1.5)
-        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        self.place(r.pose, 1.5)
         response = self.call("spawn_model", self.srv.SpawnModel, r, expect=True, name=name)
         if response is not None and response.success:
             self.models[name] = list(response.bodies)
             self.counts["models_made"] += 1
 
     def spawn_urdf(self):
-        name = "c%d_u%d" % (self.index, self.next_name)
-        self.next_name += 1
+        name = self.new_name("u")
         r = self.srv.SpawnUrdfRequest(model_name=name, urdf_xml=URDF_XML)
-        r.pose.x, r.pose.y = self.point(1.5)
-        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        self.place(r.pose, 1.5)
         response = self.call("spawn_urdf", self.srv.SpawnUrdf, r, expect=True, name=name)
         if response is not None and response.success:
             self.bodies.extend(response.bodies)
@@ -384,8 +387,7 @@ class Client:
         if not self.models:
             return
         r = self.srv.MoveModelRequest(model_name=self.random.choice(sorted(self.models)))
-        r.pose.x, r.pose.y = self.point(1.5)
-        r.pose.theta = self.random.uniform(-math.pi, math.pi)
+        self.place(r.pose, 1.5)
         self.call("move_model", self.srv.MoveModel, r, expect=True, name=r.model_name)
 
     def delete_model(self):
@@ -405,9 +407,7 @@ class Client:
     def bad(self):
         m, srv = self.msg, self.srv
         kind = self.random.randrange(10)
-        body = m.Body(name="c%d_bad%d" % (self.index, self.next_name), type=m.Body.DYNAMIC,
-                      shapes=[self.shape()])
-        self.next_name += 1
+        body = m.Body(name=self.new_name("bad"), type=m.Body.DYNAMIC, shapes=[self.shape()])
         if kind == 0:
             body.pose.x = float("nan")
             self.call("spawn_body", srv.SpawnBody, srv.SpawnBodyRequest(body=body), expect=False)
