@@ -161,7 +161,7 @@ void ContactBundles::assign(const std::vector<Contact>& contacts, const StepColo
 void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t last,
                           const SubstepBodies& bodies, const std::vector<Body>& items, int substeps,
                           const CrushedBodies* crushed) {
-  const auto moves = [&](int slot) { return bodies.isDynamicSlot(slot); };
+  const auto rowOf = [&](int slot) { return bodies.dynamicEntryOf(slot); };
   const bool anyCrushed = crushed != nullptr && crushed->any();
   for (size_t i = first; i < last; ++i) {
     if (laneOf_[i] < 0) continue;
@@ -169,7 +169,7 @@ void ContactBundles::fill(std::vector<Contact>& contacts, size_t first, size_t l
     const int k = laneOf_[i] / kBundleLanes, lane = laneOf_[i] % kBundleLanes;
     fillLane(bundles_[k], extras_[k], lane, contact, laneBody(bodies, items, contact.bodyA),
              laneBody(bodies, items, contact.bodyB), substeps);
-    if (anyCrushed && crushed->pressesCrushed(contact, moves)) {
+    if (anyCrushed && crushed->pressesCrushed(contact, rowOf)) {
       bundles_[k].laneFlags[lane] |= kNoPushLane;
     }
   }

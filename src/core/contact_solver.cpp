@@ -22,7 +22,7 @@ void ContactSolver::withholdPush(int slot) { unpushed_.mark(slot); }
 
 bool ContactSolver::getsNoPush(const Contact& contact, const SolverBodies& bodies) const {
   if (unpushed_.has(contact.bodyA) || unpushed_.has(contact.bodyB)) return true;
-  return crushed_.pressesCrushed(contact, [&](int slot) { return bodies.isActive(slot); });
+  return crushed_.pressesCrushed(contact, [&](int slot) { return bodies.dynamicEntryOf(slot); });
 }
 
 void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies,
@@ -31,7 +31,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, SolverBodies& bodies
   extras_.clear();
   bodies_ = &bodies;
   const bool baumgarte = def.solver == SolverType::Baumgarte;
-  if (baumgarte) crushed_.find(contacts, [&](int slot) { return bodies.isActive(slot); });
+  if (baumgarte) crushed_.find(contacts, [&](int slot) { return bodies.dynamicEntryOf(slot); });
   const double inverseDt = 1.0 / dt;
   for (Contact& contact : contacts) {
     const Manifold& m = contact.manifold;

@@ -14,22 +14,27 @@ namespace impulse2d {
 
 class CrushedBodies {
  public:
-  /// Marks (by slot) the bodies pressed into overlaps from opposite sides by bodies the step
-  /// does not move, directly or through a row of moving bodies. `moves(slot)`: whether the step
-  /// moves the body (dynamic and awake). Forgets the last call's marks.
-  template <class Moves>
-  void find(const std::vector<Contact>& contacts, const Moves& moves);
+  /// Marks (by solver row) the bodies pressed into overlaps from opposite sides by bodies the
+  /// step does not move, directly or through a row of moving bodies. `rowOf(slot)`: the solver
+  /// row of a body the step moves (dynamic and awake), which the members of a welded cluster
+  /// share (they are one rigid body: pushes on two members oppose as on one body), or -1.
+  /// Forgets the last call's marks.
+  template <class RowOf>
+  void find(const std::vector<Contact>& contacts, const RowOf& rowOf);
   /// Whether the contact presses a crushed body against a body the step does not move or
-  /// against another crushed body. `moves` as find's.
-  template <class Moves>
-  bool pressesCrushed(const Contact& contact, const Moves& moves) const {
+  /// against another crushed body. `rowOf` as find's.
+  template <class RowOf>
+  bool pressesCrushed(const Contact& contact, const RowOf& rowOf) const {
     if (crushed_.marked.empty()) return false;
-    const bool crushedA = crushed_.has(contact.bodyA), crushedB = crushed_.has(contact.bodyB);
-    return (crushedA && (crushedB || !moves(contact.bodyB))) || (crushedB && !moves(contact.bodyA));
+    const int rowA = rowOf(contact.bodyA), rowB = rowOf(contact.bodyB);
+    const bool crushedA = rowA >= 0 && crushed_.has(rowA);
+    const bool crushedB = rowB >= 0 && crushed_.has(rowB);
+    return (crushedA && (crushedB || rowB < 0)) || (crushedB && rowA < 0);
   }
   bool any() const { return !crushed_.marked.empty(); }
 
-  // Marks by slot for one step, with the slots marked listed so that clearing touches only them.
+  // Marks by slot (or row) for one step, with those marked listed so that clearing touches only
+  // them.
   struct SlotMarks {
     void mark(int slot) {
       const size_t k = static_cast<size_t>(slot);
@@ -50,35 +55,47 @@ class CrushedBodies {
   };
 
  private:
-  /// The first pass of find: one overlap, seen by whether the step moves its bodies.
-  void meet(const Contact& contact, bool movesA, bool movesB);
+  /// The first pass of find: one overlap, seen by the rows of its bodies (-1: still).
+  void meet(const Contact& contact, int rowA, int rowB);
   /// The rest of find, once every overlap has been met.
   void handOnPushes();
   static int sectorOf(const Vec2& direction);
   static bool mayOppose(unsigned sectors);
 
-  // By slot, the first push from a still body a moving body meets, directly (from kStill) or
+  // By row, the first push from a still body a moving body meets, directly (from kStill) or
   // handed on by the moving body `from` (the still body's push).
   static constexpr int kStill = -1;
   static constexpr int kHandOnRounds = 8;  // the longest row of moving bodies handed a push
+  // A body's pushes from still bodies after its first, up to kOtherPushes of them, are kept too:
+  // each new one is weighed against every one kept (crushed_bodies.cpp, seed 1586).
+  static constexpr int kOtherPushes = 3;
   struct Backing {
-    Vec2 push = Vec2::Zero();
+    Vec2 push = Vec2::Zero();  // the first, which is handed on
     int from = kStill;
     bool pushed = false;
+    int others = 0;  // how many of otherPushes are set
+    Vec2 otherPushes[kOtherPushes];
   };
+  static Backing backed(const Vec2& push, int from) {
+    Backing backing;
+    backing.push = push;
+    backing.from = from;
+    backing.pushed = true;
+    return backing;
+  }
   std::vector<Backing> backing_;
-  std::vector<int> backedSlots_;  // the slots set in it, to clear only them
+  std::vector<int> backedRows_;  // the rows set in it, to clear only them
   struct PressedPair {
     int a, b;
     Vec2 normal;  // from a to b
   };
-  std::vector<PressedPair> pressedPairs_;  // overlaps between two moving bodies
+  std::vector<PressedPair> pressedPairs_;  // overlaps between two moving bodies (rows)
   unsigned sectors_ = 0;                   // the twelfths of the circle still bodies push into
   SlotMarks crushed_;
 };
 
-template <class Moves>
-void CrushedBodies::find(const std::vector<Contact>& contacts, const Moves& moves) {
+template <class RowOf>
+void CrushedBodies::find(const std::vector<Contact>& contacts, const RowOf& rowOf) {
   crushed_.clear();  // last step's
   pressedPairs_.clear();
   sectors_ = 0;
@@ -86,7 +103,7 @@ void CrushedBodies::find(const std::vector<Contact>& contacts, const Moves& move
     const Manifold& m = contact.manifold;
     bool overlapping = false;
     for (int i = 0; i < m.pointCount; ++i) overlapping |= m.points[i].separation < 0.0;
-    if (overlapping) meet(contact, moves(contact.bodyA), moves(contact.bodyB));
+    if (overlapping) meet(contact, rowOf(contact.bodyA), rowOf(contact.bodyB));
   }
   handOnPushes();
 }

@@ -118,6 +118,8 @@ class SolverBodies {
   bool isDynamic(int entry) const { return entry < dynamicCount_; }
   /// Whether the step moves the body in `slot` as a dynamic body (awake).
   bool isActive(int slot) const { return indexOfSlot_[slot] < dynamicCount_; }
+  /// The entry of the body in `slot` when the step moves it as a dynamic body, or -1.
+  int dynamicEntryOf(int slot) const { return isActive(slot) ? indexOfSlot_[slot] : -1; }
 
   SolverBody& operator[](int entry) { return entries_[entry]; }
   const SolverBody& operator[](int entry) const { return entries_[entry]; }

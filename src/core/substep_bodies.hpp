@@ -98,6 +98,8 @@ class SubstepBodies {
   bool isDynamicEntry(int entry) const { return entry >= 0 && entry < dynamicCount_; }
   /// Whether the body in `slot` is dynamic and awake: the step moves it by impulses.
   bool isDynamicSlot(int slot) const { return isDynamicEntry(entryOfSlot_[slot]); }
+  /// The entry of the body in `slot` when it is dynamic and awake, or -1.
+  int dynamicEntryOf(int slot) const { return isDynamicSlot(slot) ? entryOfSlot_[slot] : -1; }
 
   int dynamicCount() const { return dynamicCount_; }
   int movingCount() const { return movingCount_; }

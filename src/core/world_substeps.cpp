@@ -314,7 +314,7 @@ void WorldImpl::solveSubsteps(double dt) {
   if (soft) measureSoftStepStart();
   BundlePass pass = bundlePass(h);
   if (soft) {  // its springs would turn a crushed body out of its overlaps (crushed_bodies.hpp)
-    crushedBodies.find(contacts, [&](int slot) { return sb.isDynamicSlot(slot); });
+    crushedBodies.find(contacts, [&](int slot) { return sb.dynamicEntryOf(slot); });
   }
   fillBundles(dt, substeps, soft);
   const bool preparedByRelax = !soft && def.warmStarting;
