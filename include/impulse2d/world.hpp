@@ -159,6 +159,9 @@ class World {
  private:
   /// The step stage behind takeRemovedBodies() and takeLostBodies() (world_bounds.cpp).
   void removeEscapedBodies();
+  /// Unit tests only (test/unit/test_limits.cpp): writes a state no World method accepts, to
+  /// prove the last guard that no valid request reaches.
+  friend struct WorldTestAccess;
 
   std::unique_ptr<WorldImpl> impl_;
 };
