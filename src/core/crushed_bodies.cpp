@@ -39,7 +39,8 @@ namespace impulse2d {
 // pushes on two of its members oppose as pushes on one (seed 1752: a welded pair between the
 // ground and a body asleep, 3,000 N s). Each push on a body is weighed against every earlier one
 // kept, not only the first: a bar held by three still bodies from 24, 143 and 229 degrees
-// (seed 1586) has one opposed pair, and the push met first need not be in it.
+// (seed 1586) has one opposed pair, and the push met first need not be in it. So is a push
+// handed on by a row of moving bodies (seed 2327, below: pressedBack).
 //
 // A still body's push is handed on, body to body, through overlaps that press
 // onward (within 60 degrees of it); where two pushes from opposite sides (more than 120 degrees
@@ -73,11 +74,9 @@ void CrushedBodies::meet(const Contact& contact, int rowA, int rowB) {
   }
   bool opposes = backing.push.dot(push) < -0.5;
   for (int i = 0; i < backing.others; ++i) opposes |= backing.otherPushes[i].dot(push) < -0.5;
-  if (opposes) {
-    crushed_.mark(row);
-  } else if (backing.others < kOtherPushes) {
-    backing.otherPushes[backing.others++] = push;
-  }
+  if (opposes) crushed_.mark(row);
+  // Kept either way: a row of moving bodies may press against it (pressedBack).
+  if (backing.others < kOtherPushes) backing.otherPushes[backing.others++] = push;
 }
 
 void CrushedBodies::handOnPushes() {
@@ -99,11 +98,10 @@ void CrushedBodies::handOnPushes() {
         Backing& backedB = backing_[static_cast<size_t>(pair.b)];
         const bool aPressesB = backedA.pushed && backedA.push.dot(pair.normal) > 0.5;
         const bool bPressesA = backedB.pushed && backedB.push.dot(pair.normal) < -0.5;
-        if (aPressesB && bPressesA) {
-          if (backedA.push.dot(backedB.push) < -0.5) {
-            crushRow(pair.a);
-            crushRow(pair.b);
-          }
+        if ((aPressesB && pressedBack(backedA.push, backedB, pair.normal)) ||
+            (bPressesA && pressedBack(backedB.push, backedA, Vec2(-pair.normal)))) {
+          crushRow(pair.a);
+          crushRow(pair.b);
         } else if (aPressesB && !backedB.pushed) {
           backedB = backed(backedA.push, pair.a);
           backedRows_.push_back(pair.b);
@@ -119,6 +117,18 @@ void CrushedBodies::handOnPushes() {
   }
   for (const int row : backedRows_) backing_[static_cast<size_t>(row)] = Backing();
   backedRows_.clear();
+}
+
+// Whether a push pressing across an overlap (along `normal`, into `other`) meets one kept on the
+// other body that presses back, more than 120 degrees from it: any of them, not only the first
+// (seed 2327: a bar crushed between two still bodies, pressed by a third body's row against one
+// of them, 0.16 m deep, at 250 N s).
+bool CrushedBodies::pressedBack(const Vec2& push, const Backing& other, const Vec2& normal) {
+  auto back = [&](const Vec2& q) { return q.dot(normal) < -0.5 && q.dot(push) < -0.5; };
+  if (!other.pushed) return false;
+  bool found = back(other.push);
+  for (int i = 0; i < other.others; ++i) found |= back(other.otherPushes[i]);
+  return found;
 }
 
 // Which twelfth of the circle a unit vector points into: 0 from -pi (and 0 for one not finite).

@@ -59,6 +59,8 @@ class CrushedBodies {
   void meet(const Contact& contact, int rowA, int rowB);
   /// The rest of find, once every overlap has been met.
   void handOnPushes();
+  struct Backing;
+  static bool pressedBack(const Vec2& push, const Backing& other, const Vec2& normal);
   static int sectorOf(const Vec2& direction);
   static bool mayOppose(unsigned sectors);
 
