@@ -1,13 +1,15 @@
 // impulse2d_core_soak: runs the core soak (soak_run.hpp) for a time or a number of seeds.
 //
 //   impulse2d_core_soak [--seed N] [--seconds S | --runs N] [--steps N] [--solver NAME|all]
-//                       [--threads N] [--top-down] [--watch BODY] [--keep-going] [--junit FILE]
+//                       [--threads N] [--top-down] [--wrenches-at-points] [--watch BODY]
+//                       [--keep-going] [--junit FILE]
 //
 // Seeds run one after the other from --seed, each with every solver asked for, until --seconds
 // of wall time have passed (default 60) or --runs seeds are done. Prints one line per run and a
 // total; on a violation, the seed, the solver and the last edits, and exits 1 (after the seed's
 // other solvers; --keep-going runs every seed asked for and counts the failures). --watch prints
 // one body's pose, velocity and contacts after every step (to see how a violation came about).
+// --wrenches-at-points pushes off the centre, as the ROS soak's clients do (soak::Options).
 #include <impulse2d/defs.hpp>
 #include <impulse2d/simd.hpp>
 
@@ -26,7 +28,8 @@ int usage(const char* why) {
   std::fprintf(stderr,
                "impulse2d_core_soak: %s\nusage: impulse2d_core_soak [--seed N] [--seconds S | "
                "--runs N] [--steps N] [--solver baumgarte|ngs|soft|substep|all] [--threads N] "
-               "[--top-down] [--watch BODY] [--keep-going] [--junit FILE]\n",
+               "[--top-down] [--wrenches-at-points] [--watch BODY] [--keep-going] "
+               "[--junit FILE]\n",
                why);
   return 2;
 }
@@ -63,7 +66,7 @@ int main(int argc, char** argv) {
   const std::string simd = useSimdTargetFromEnvironment();
   if (!simd.empty()) std::fprintf(stderr, "impulse2d_core_soak: %s\n", simd.c_str());
   double seed = 1, seconds = 60, runs = 0, steps = 600, threads = 1;
-  bool topDown = false, keepGoing = false;
+  bool topDown = false, keepGoing = false, wrenchesAtPoints = false;
   std::string junit, watch;
   std::vector<SolverType> solvers(std::begin(kAllSolvers), std::end(kAllSolvers));
   for (int i = 1; i < argc; ++i) {
@@ -88,6 +91,8 @@ int main(int argc, char** argv) {
       keepGoing = true;
     } else if (arg == "--top-down") {
       topDown = true;
+    } else if (arg == "--wrenches-at-points") {
+      wrenchesAtPoints = true;
     } else if (arg == "--watch") {
       if (!value) return usage("--watch needs a body name");
       watch = value;
@@ -131,6 +136,7 @@ int main(int argc, char** argv) {
       options.threads = static_cast<int>(threads);
       options.gravity = !topDown && soak::gravityOf(s);
       options.watch = watch;
+      options.wrenchesAtPoints = wrenchesAtPoints;
       const soak::Report report = soak::run(options);
       ++done;
       totalSteps += report.steps;
@@ -139,7 +145,7 @@ int main(int argc, char** argv) {
       const std::string line = report.summary(options);
       std::printf("%s\n", line.c_str());
       std::string xml = "  <testcase classname=\"core_soak\" name=\"seed_" + std::to_string(s) +
-                        "_" + solverName(solver) + "\"";
+                        "_" + solverName(solver) + (wrenchesAtPoints ? "_at_points" : "") + "\"";
       if (report.violations.empty()) {
         xml += "/>";
       } else {
@@ -150,7 +156,8 @@ int main(int argc, char** argv) {
         for (const std::string& e : report.lastEdits) detail += "  " + e + "\n";
         detail += "reproduce: impulse2d_core_soak --seed " + std::to_string(s) +
                   " --runs 1 --steps " + std::to_string(options.steps) + " --solver " +
-                  solverName(solver) + (topDown ? " --top-down" : "") + "\n";
+                  solverName(solver) + (topDown ? " --top-down" : "") +
+                  (wrenchesAtPoints ? " --wrenches-at-points" : "") + "\n";
         std::fprintf(stderr, "%s", detail.c_str());
         xml += "><failure message=\"" + xmlEscape(report.violations.front()) + "\"><![CDATA[" +
                detail + "]]></failure></testcase>";

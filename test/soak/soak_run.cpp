@@ -34,7 +34,8 @@ constexpr double kKinematicHalfWidth = 6.0, kKinematicLow = 4.0, kKinematicHigh 
 
 struct Wrench {
   BodyId body;
-  Vec2 force = Vec2::Zero(), point = Vec2::Zero();
+  Vec2 force = Vec2::Zero();
+  Vec2 localPoint = Vec2::Zero();  // where it pushes, in the body's frame (wrenchesAtPoints)
   double torque = 0.0;
   int stepsLeft = 0;
 };
@@ -287,7 +288,10 @@ class Soak {
     const double a = uniform(-kPi, kPi), f = uniform(0.0, 200.0);
     w.force = Vec2(f * std::cos(a), f * std::sin(a));
     w.torque = uniform(-20.0, 20.0);
-    w.point = world_.body(id).center + Vec2(uniform(-0.5, 0.5), uniform(-0.5, 0.5));
+    const Body& body = world_.body(id);
+    const Vec2 offset(uniform(-0.5, 0.5), uniform(-0.5, 0.5));  // drawn either way: same paths
+    w.localPoint =
+        options_.wrenchesAtPoints ? body.xf.applyInverse(body.center + offset) : body.localCenter;
     w.stepsLeft = uniformInt(1, static_cast<int>(0.5 / world_.settings().timeStep));
     log("wrench " + nameOf(id) + " " + str(w.force) + " for " + std::to_string(w.stepsLeft));
     wrenches_.push_back(w);
@@ -313,7 +317,7 @@ class Soak {
     for (Wrench& w : wrenches_) {
       if (!world_.isValid(w.body)) w.stepsLeft = 0;
       if (w.stepsLeft-- <= 0) continue;
-      const Vec2 point = world_.body(w.body).xf.apply(world_.body(w.body).localCenter);
+      const Vec2 point = world_.body(w.body).xf.apply(w.localPoint);
       if (!world_.applyForce(w.body, w.force, point) || !world_.applyTorque(w.body, w.torque)) {
         violation("a valid wrench was refused");
       }
@@ -736,7 +740,8 @@ class Soak {
 std::string Report::summary(const Options& options) const {
   std::ostringstream out;
   out << "soak seed " << options.seed << " solver " << solverName(options.solver) << " threads "
-      << options.threads << (options.gravity ? "" : " top-down") << ": " << steps << " steps, "
+      << options.threads << (options.gravity ? "" : " top-down")
+      << (options.wrenchesAtPoints ? " wrenches-at-points" : "") << ": " << steps << " steps, "
       << edits << " edits (" << badRefused << " bad, refused), up to " << maxBodies
       << " bodies and " << maxJoints << " joints, " << checks << " checks, " << violations.size()
       << " violations";
