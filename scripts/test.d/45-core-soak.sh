@@ -3,7 +3,7 @@
 # World API (spawn, delete, joints of every type anchored anywhere, teleports, forces, kinematic
 # motion, sleep on and off, bad requests), invariants checked after every step, under every
 # solver. Runs CORE_SOAK_RUNS seeds (default 50, under a minute) from CORE_SOAK_SEED (default 1),
-# then CORE_SOAK_AT_POINTS_RUNS (default 20) of them again with --wrenches-at-points (pushes off
+# then CORE_SOAK_AT_POINTS_RUNS (default 10) of them again with --wrenches-at-points (pushes off
 # the centre, as the ROS soak's clients give them): the same seeds on every machine. Longer:
 # CORE_SOAK_SECONDS=1800 runs seeds for that much wall time instead (a run is never cut short).
 # A failure
@@ -41,7 +41,7 @@ else
   if [ "$runs" -gt "$first" ]; then
     start_part 2 900 --seed "$((SEED + first))" --runs "$((runs - first))"
   fi
-  at_points="${CORE_SOAK_AT_POINTS_RUNS:-20}"
+  at_points="${CORE_SOAK_AT_POINTS_RUNS:-10}"
   if [ "$at_points" -gt 0 ]; then
     half=$(((at_points + 1) / 2))
     echo "core soak: seeds $SEED-$((SEED + at_points - 1)) with wrenches at points" >&2
