@@ -85,7 +85,8 @@ void CrushedBodies::handOnPushes() {
   // still bodies push from opposite sides can a row be crushed (a pile on the ground is not:
   // its pushes all point up, and the rounds would cost a large pyramid a quarter of its step).
   if (mayOppose(sectors_)) {
-    auto crushRow = [&](int row) {
+    // Marks the body in `row` and those that handed it its push, back to the still body.
+    auto crushAlong = [&](int row) {
       for (int hops = 0; row != kStill && hops <= kHandOnRounds; ++hops) {
         crushed_.mark(row);
         row = backing_[static_cast<size_t>(row)].from;
@@ -100,8 +101,8 @@ void CrushedBodies::handOnPushes() {
         const bool bPressesA = backedB.pushed && backedB.push.dot(pair.normal) < -0.5;
         if ((aPressesB && pressedBack(backedA.push, backedB, pair.normal)) ||
             (bPressesA && pressedBack(backedB.push, backedA, Vec2(-pair.normal)))) {
-          crushRow(pair.a);
-          crushRow(pair.b);
+          crushAlong(pair.a);
+          crushAlong(pair.b);
         } else if (aPressesB && !backedB.pushed) {
           backedB = backed(backedA.push, pair.a);
           backedRows_.push_back(pair.b);
