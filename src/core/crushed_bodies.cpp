@@ -67,16 +67,12 @@ void CrushedBodies::meet(const Contact& contact, int rowA, int rowB) {
   sectors_ |= 1u << sectorOf(push);
   ensureBacking(row);
   Backing& backing = backing_[static_cast<size_t>(row)];
-  if (!backing.pushed) {
-    backing = backed(push, kStill);
-    backedRows_.push_back(row);
-    return;
-  }
-  bool opposes = backing.push.dot(push) < -0.5;
-  for (int i = 0; i < backing.others; ++i) opposes |= backing.otherPushes[i].dot(push) < -0.5;
+  if (!backing.pushed()) backedRows_.push_back(row);
+  bool opposes = false;
+  for (int i = 0; i < backing.count; ++i) opposes |= backing.pushes[i].dot(push) < -0.5;
   if (opposes) crushed_.mark(row);
   // Kept either way: a row of moving bodies may press against it (pressedBack).
-  if (backing.others < kOtherPushes) backing.otherPushes[backing.others++] = push;
+  if (backing.count < kKeptPushes) backing.pushes[backing.count++] = push;
 }
 
 void CrushedBodies::handOnPushes() {
@@ -97,18 +93,18 @@ void CrushedBodies::handOnPushes() {
       for (const PressedPair& pair : pressedPairs_) {
         Backing& backedA = backing_[static_cast<size_t>(pair.a)];
         Backing& backedB = backing_[static_cast<size_t>(pair.b)];
-        const bool aPressesB = backedA.pushed && backedA.push.dot(pair.normal) > 0.5;
-        const bool bPressesA = backedB.pushed && backedB.push.dot(pair.normal) < -0.5;
-        if ((aPressesB && pressedBack(backedA.push, backedB, pair.normal)) ||
-            (bPressesA && pressedBack(backedB.push, backedA, Vec2(-pair.normal)))) {
+        const bool aPressesB = backedA.pushed() && backedA.first().dot(pair.normal) > 0.5;
+        const bool bPressesA = backedB.pushed() && backedB.first().dot(pair.normal) < -0.5;
+        if ((aPressesB && pressedBack(backedA.first(), backedB, pair.normal)) ||
+            (bPressesA && pressedBack(backedB.first(), backedA, Vec2(-pair.normal)))) {
           crushAlong(pair.a);
           crushAlong(pair.b);
-        } else if (aPressesB && !backedB.pushed) {
-          backedB = backed(backedA.push, pair.a);
+        } else if (aPressesB && !backedB.pushed()) {
+          backedB = backed(backedA.first(), pair.a);
           backedRows_.push_back(pair.b);
           handedOn = true;
-        } else if (bPressesA && !backedA.pushed) {
-          backedA = backed(backedB.push, pair.b);
+        } else if (bPressesA && !backedA.pushed()) {
+          backedA = backed(backedB.first(), pair.b);
           backedRows_.push_back(pair.a);
           handedOn = true;
         }
@@ -125,10 +121,11 @@ void CrushedBodies::handOnPushes() {
 // (seed 2327: a bar crushed between two still bodies, pressed by a third body's row against one
 // of them, 0.16 m deep, at 250 N s).
 bool CrushedBodies::pressedBack(const Vec2& push, const Backing& other, const Vec2& normal) {
-  auto back = [&](const Vec2& q) { return q.dot(normal) < -0.5 && q.dot(push) < -0.5; };
-  if (!other.pushed) return false;
-  bool found = back(other.push);
-  for (int i = 0; i < other.others; ++i) found |= back(other.otherPushes[i]);
+  bool found = false;
+  for (int i = 0; i < other.count; ++i) {
+    const Vec2& q = other.pushes[i];
+    found |= q.dot(normal) < -0.5 && q.dot(push) < -0.5;
+  }
   return found;
 }
 

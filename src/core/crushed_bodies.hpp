@@ -64,25 +64,25 @@ class CrushedBodies {
   static int sectorOf(const Vec2& direction);
   static bool mayOppose(unsigned sectors);
 
-  // By row, the first push from a still body a moving body meets, directly (from kStill) or
-  // handed on by the moving body `from` (the still body's push).
+  // By row, the pushes from still bodies a moving body meets, up to kKeptPushes of them in the
+  // order met: directly (from kStill), or the one handed on by the moving body `from`. Each new
+  // push is weighed against every one kept (crushed_bodies.cpp, seed 1586); the first is the one
+  // handed on.
   static constexpr int kStill = -1;
   static constexpr int kHandOnRounds = 8;  // the longest row of moving bodies handed a push
-  // A body's pushes from still bodies after its first, up to kOtherPushes of them, are kept too:
-  // each new one is weighed against every one kept (crushed_bodies.cpp, seed 1586).
-  static constexpr int kOtherPushes = 3;
+  static constexpr int kKeptPushes = 4;
   struct Backing {
-    Vec2 push = Vec2::Zero();  // the first, which is handed on
+    Vec2 pushes[kKeptPushes];
+    int count = 0;
     int from = kStill;
-    bool pushed = false;
-    int others = 0;  // how many of otherPushes are set
-    Vec2 otherPushes[kOtherPushes];
+    bool pushed() const { return count > 0; }
+    const Vec2& first() const { return pushes[0]; }
   };
   static Backing backed(const Vec2& push, int from) {
     Backing backing;
-    backing.push = push;
+    backing.pushes[0] = push;
+    backing.count = 1;
     backing.from = from;
-    backing.pushed = true;
     return backing;
   }
   std::vector<Backing> backing_;

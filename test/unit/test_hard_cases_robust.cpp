@@ -273,12 +273,7 @@ TEST(HardCasesRobust, AWeldedPairPressedBetweenGroundAndCeilingIsCrushedAsOneBod
     const BodyId high = addBox(world, "high", Vec2(0.0, 3.0), 1.0, 1.0, BodyType::Dynamic);
     const BodyId ceiling =
         addBox(world, "ceiling", Vec2(0.0, 4.4), 20.0, 2.0, BodyType::Static);  // bottom at 3.4
-    JointDef weld;
-    weld.type = JointType::Weld;
-    weld.bodyA = low;
-    weld.bodyB = high;
-    weld.anchor = Vec2(0.0, 1.7);
-    ASSERT_TRUE(world.createJoint(weld).valid());
+    ASSERT_TRUE(world.createJoint(test::weldDef(low, high, Vec2(0.0, 1.7))).valid());
     double fastest = 0.0, lowest = 1e9, heaviest = 0.0;
     for (int step = 0; step < 600; ++step) {
       if (step == 300) {
